@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian packages chainbench needs, and only those that are missing.
+#   scripts/deps.sh build   compilers, CMake, Ninja, Box2D, GoogleTest, Google Benchmark, CLI11, JSON
+#   scripts/deps.sh run     build + python3-matplotlib for the plots
+#   scripts/deps.sh fuzz    build + clang and its libFuzzer runtime
+set -euo pipefail
+
+build=(cmake ninja-build g++ libbox2d-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
+       nlohmann-json3-dev)
+case "${1:-build}" in
+  build) wanted=("${build[@]}") ;;
+  run) wanted=("${build[@]}" python3 python3-matplotlib) ;;
+  fuzz) wanted=("${build[@]}" clang libclang-rt-14-dev) ;;
+  *) echo "usage: $0 [build|run|fuzz]" >&2; exit 2 ;;
+esac
+
+missing=()
+for pkg in "${wanted[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$pkg")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+if [[ $(id -u) -eq 0 ]]; then
+  sudo=()
+elif command -v sudo >/dev/null; then
+  sudo=(sudo)
+else
+  echo "deps.sh: missing packages (${missing[*]}) and no root or sudo to install them" >&2
+  exit 1
+fi
+echo "deps.sh: installing ${missing[*]}" >&2
+"${sudo[@]}" apt-get update -q
+"${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
+  "${missing[@]}"

@@ -1,0 +1,71 @@
+// Plain data shared by the solver's API: vectors, body kinds, handles, per-step reports.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+namespace chain {
+
+// Double precision throughout: a chain of n pushes accumulates n roundings, and a float at
+// 1 km already resolves only 6e-5 m.
+struct Vec2 {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+enum class BodyType : std::uint8_t {
+  kStatic,     // never moves
+  kKinematic,  // moves at its velocity, infinite mass, never pushed
+  kDynamic,    // pushed out of overlaps, moved by gravity and drives
+};
+
+// The push-out algorithm a world runs.
+enum class Variant : std::uint8_t {
+  kModern,    // collision chaining done right: order-independent, bounded, crush-aware
+  kSeed2014,  // the 2014 engine's algorithm, quirks included (see seed/ALGORITHM-2014.md)
+};
+
+// What a push does to the velocities of the bodies it separates.
+enum class VelocityRule : std::uint8_t {
+  kZero,       // a velocity component pointing into the push is set to zero (the 2014 rule)
+  kInelastic,  // bodies pushed against each other share a mass-weighted normal velocity
+};
+
+enum class Axis : std::uint8_t { kX = 0, kY = 1 };
+
+// A stable handle: never reused within a world, unaffected by how the world stores bodies.
+struct BodyId {
+  static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();
+  std::uint32_t value = kInvalid;
+
+  friend constexpr bool operator==(BodyId, BodyId) = default;
+};
+
+// Sides on which a body was pushed during the last step (y up: bottom is the -y side).
+namespace touching {
+inline constexpr std::uint8_t kLeft = 1u << 0;
+inline constexpr std::uint8_t kRight = 1u << 1;
+inline constexpr std::uint8_t kBottom = 1u << 2;
+inline constexpr std::uint8_t kTop = 1u << 3;
+}  // namespace touching
+
+// A dynamic body squeezed along `axis` between two bodies that cannot give way: `anchor` is the
+// immovable body whose push reached it, `blocker` the immovable body it was pushed into.
+struct CrushEvent {
+  BodyId body;
+  BodyId anchor;
+  BodyId blocker;
+  Axis axis = Axis::kX;
+};
+
+// What the last step cost and met. Counts are per step and reset by every step.
+struct StepStats {
+  std::uint32_t passes = 0;         // contact sweeps run (modern; 1 for seed2014)
+  std::uint32_t contacts = 0;       // overlapping pairs found by the broadphase, all passes
+  std::uint32_t resolve_calls = 0;  // pair resolutions attempted, chained ones included
+  std::uint32_t max_depth = 0;      // longest chain of nested resolutions
+  std::uint32_t budget_hits = 0;    // chains cut short because the work budget ran out
+  std::uint32_t crush_events = 0;   // bodies squeezed between two immovable bodies
+};
+
+}  // namespace chain

@@ -1,0 +1,103 @@
+#include "bodies.h"
+
+#include <algorithm>
+#include <bit>
+#include <numeric>
+#include <tuple>
+#include <utility>
+
+namespace chain::detail {
+namespace {
+
+// Maps a double to an unsigned key with the same order (and -0 below +0), so that sorting never
+// meets two keys that compare equal yet differ in bits.
+std::uint64_t order_key(double f) {
+  constexpr std::uint64_t kSign = 0x8000000000000000u;
+  const auto bits = std::bit_cast<std::uint64_t>(f);
+  return (bits & kSign) ? ~bits : (bits | kSign);
+}
+
+int kind_rank(BodyType type) {
+  switch (type) {
+    case BodyType::kDynamic:
+      return 0;
+    case BodyType::kKinematic:
+      return 1;
+    case BodyType::kStatic:
+      return 2;
+  }
+  return 3;
+}
+
+template <class T>
+void gather(std::vector<T>& v, const std::vector<std::uint32_t>& order) {
+  std::vector<T> out(v.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    out[i] = v[order[i]];
+  v = std::move(out);
+}
+
+}  // namespace
+
+void Bodies::append(const BodyDef& def, std::uint32_t body_id) {
+  const bool dynamic = def.type == BodyType::kDynamic;
+  x.push_back(def.center.x);
+  y.push_back(def.center.y);
+  vx.push_back(def.type == BodyType::kStatic ? 0.0 : def.velocity.x);
+  vy.push_back(def.type == BodyType::kStatic ? 0.0 : def.velocity.y);
+  hx.push_back(def.half_extents.x);
+  hy.push_back(def.half_extents.y);
+  mass.push_back(dynamic ? def.mass : 0.0);
+  gravity_scale.push_back(dynamic ? def.gravity_scale : 0.0);
+  restitution.push_back(def.restitution);
+  drive_x.push_back(0.0);
+  drive_y.push_back(0.0);
+  driven.push_back(0);
+  touching.push_back(0);
+  type.push_back(def.type);
+  id.push_back(body_id);
+}
+
+std::uint32_t Bodies::swap_remove(std::uint32_t slot) {
+  const std::uint32_t last = size() - 1;
+  auto move_last = [&](auto& v) {
+    v[slot] = v[last];
+    v.pop_back();
+  };
+  move_last(x), move_last(y), move_last(vx), move_last(vy), move_last(hx), move_last(hy);
+  move_last(mass), move_last(gravity_scale), move_last(restitution);
+  move_last(drive_x), move_last(drive_y), move_last(driven), move_last(touching);
+  move_last(type), move_last(id);
+  return slot < size() ? id[slot] : kNoSlot;
+}
+
+void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id) {
+  const std::uint32_t n = size();
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  // Every field that tells bodies apart takes part, creation order (the id) only breaks ties
+  // between bodies that are identical in every respect, where the choice cannot matter.
+  auto key = [&](std::uint32_t i) {
+    return std::tuple(kind_rank(type[i]), order_key(y[i]), order_key(x[i]), order_key(hy[i]),
+                      order_key(hx[i]), order_key(mass[i]), order_key(vx[i]), order_key(vy[i]),
+                      order_key(gravity_scale[i]), order_key(restitution[i]), driven[i],
+                      order_key(drive_x[i]), order_key(drive_y[i]), id[i]);
+  };
+  std::sort(order.begin(), order.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+
+  gather(x, order), gather(y, order), gather(vx, order), gather(vy, order);
+  gather(hx, order), gather(hy, order), gather(mass, order), gather(gravity_scale, order);
+  gather(restitution, order), gather(drive_x, order), gather(drive_y, order);
+  gather(driven, order), gather(touching, order), gather(type, order), gather(id, order);
+
+  dynamic_end = movable_end = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (type[i] == BodyType::kDynamic) dynamic_end = i + 1;
+    if (type[i] != BodyType::kStatic) movable_end = i + 1;
+  }
+  for (std::uint32_t i = 0; i < n; ++i)
+    slot_of_id[id[i]] = i;
+}
+
+}  // namespace chain::detail

@@ -1,0 +1,47 @@
+// Body storage: structure of arrays in solve order.
+//
+// Solve order is the order every loop of a step follows. It is derived from the bodies
+// themselves (kind, then position, size and the rest), never from creation order, so that a
+// scene built in any order gives the same bits. Dynamic bodies come first, then kinematic, then
+// static, which lets hot loops run over plain index ranges.
+#pragma once
+
+#include <chain/types.h>
+#include <chain/world.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace chain::detail {
+
+inline constexpr std::uint32_t kNoSlot = 0xffffffffu;
+
+struct Bodies {
+  std::vector<double> x, y;    // centre
+  std::vector<double> vx, vy;  // velocity
+  std::vector<double> hx, hy;  // half extents
+  std::vector<double> mass;    // 0 for kinematic and static bodies
+  std::vector<double> gravity_scale;
+  std::vector<double> restitution;
+  std::vector<double> drive_x, drive_y;
+  std::vector<std::uint8_t> driven;
+  std::vector<std::uint8_t> touching;  // touching:: bits of the last step
+  std::vector<BodyType> type;
+  std::vector<std::uint32_t> id;  // BodyId value of each slot
+
+  // Valid after canonicalize(): slots [0, dynamic_end) are dynamic, [dynamic_end, movable_end)
+  // kinematic and the rest static.
+  std::uint32_t dynamic_end = 0;
+  std::uint32_t movable_end = 0;
+
+  std::uint32_t size() const { return static_cast<std::uint32_t>(x.size()); }
+  bool immovable(std::uint32_t i) const { return i >= dynamic_end; }
+
+  void append(const BodyDef& def, std::uint32_t body_id);
+  // Moves the last slot into `slot` and drops the last; returns the id now stored at `slot`.
+  std::uint32_t swap_remove(std::uint32_t slot);
+  // Sorts slots into solve order; fills slot_of_id (indexed by BodyId value).
+  void canonicalize(std::vector<std::uint32_t>& slot_of_id);
+};
+
+}  // namespace chain::detail

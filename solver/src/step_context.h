@@ -1,0 +1,78 @@
+// What a resolver works on during one step, and the moves every resolver makes the same way.
+#pragma once
+
+#include "bodies.h"
+#include "broadphase.h"
+#include "velocity_response.h"
+
+#include <chain/types.h>
+#include <chain/world.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace chain::detail {
+
+inline constexpr int kAnyAxis = 2;
+
+struct CrushRecord {
+  std::uint32_t body, anchor, blocker;
+  Axis axis;
+};
+
+struct StepContext {
+  Bodies& bodies;
+  Broadphase& broadphase;
+  VelocityResponse& response;
+  const WorldDef& def;
+  StepStats& stats;
+  std::vector<CrushRecord>& crushes;
+  std::uint64_t budget;  // pair resolutions left this step
+
+  double* pos(int axis) { return axis == 0 ? bodies.x.data() : bodies.y.data(); }
+  double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
+  const double* half(int axis) const { return axis == 0 ? bodies.hx.data() : bodies.hy.data(); }
+
+  // Moves body i by d along axis. Under the zero rule, a velocity component that points against
+  // the move stops, as the 2014 engine's updateTransform did.
+  void move(std::uint32_t i, int axis, double d) {
+    pos(axis)[i] += d;
+    broadphase.note_move(i, bodies.x[i], bodies.y[i]);
+    double& v = vel(axis)[i];
+    if (def.velocity_rule == VelocityRule::kZero && d * v < 0.0) v = 0.0;
+  }
+
+  // Puts body i at `target` along axis; returns how far it moved.
+  double place(std::uint32_t i, int axis, double target) {
+    const double d = target - pos(axis)[i];
+    pos(axis)[i] = target;
+    broadphase.note_move(i, bodies.x[i], bodies.y[i]);
+    double& v = vel(axis)[i];
+    if (def.velocity_rule == VelocityRule::kZero && d * v < 0.0) v = 0.0;
+    return d;
+  }
+
+  // Records that `a` was pushed out of `b` along axis, in direction sign (+1 or -1).
+  void note_push(std::uint32_t a, std::uint32_t b, int axis, double sign) {
+    const std::uint8_t a_side = axis == 0 ? (sign > 0 ? touching::kLeft : touching::kRight)
+                                          : (sign > 0 ? touching::kBottom : touching::kTop);
+    const std::uint8_t b_side = axis == 0 ? (sign > 0 ? touching::kRight : touching::kLeft)
+                                          : (sign > 0 ? touching::kTop : touching::kBottom);
+    bodies.touching[a] |= a_side;
+    bodies.touching[b] |= b_side;
+    if (def.velocity_rule == VelocityRule::kInelastic) response.add(a, b, axis, sign);
+  }
+};
+
+// Penetration depth of two boxes along each axis; both positive means they overlap.
+struct Overlap {
+  double x, y;
+};
+
+inline Overlap overlap(const Bodies& b, std::uint32_t i, std::uint32_t j) {
+  return {(b.hx[i] + b.hx[j]) - std::abs(b.x[i] - b.x[j]),
+          (b.hy[i] + b.hy[j]) - std::abs(b.y[i] - b.y[j])};
+}
+
+}  // namespace chain::detail

@@ -1,0 +1,94 @@
+#include "velocity_response.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace chain::detail {
+
+std::uint32_t VelocityResponse::find(std::uint32_t i) {
+  while (parent_[i] != i) {
+    parent_[i] = parent_[parent_[i]];  // path halving
+    i = parent_[i];
+  }
+  return i;
+}
+
+void VelocityResponse::apply(Bodies& bodies, double restitution_threshold) {
+  if (links_.empty()) return;
+  apply_axis(bodies, 0, restitution_threshold);
+  apply_axis(bodies, 1, restitution_threshold);
+}
+
+void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_threshold) {
+  const std::uint32_t n = bodies.dynamic_end;
+  double* v = axis == 0 ? bodies.vx.data() : bodies.vy.data();
+  parent_.resize(n);
+  member_.assign(n, 0);
+  for (auto* a : {&mass_, &momentum_, &anchor_sum_, &restitution_, &spread_})
+    a->resize(n);
+  anchor_count_.resize(n);
+
+  // A link joins two bodies only while they close in or rest on each other: a pair that an
+  // earlier push already set apart keeps its velocities.
+  auto closing = [&](const Link& l) {
+    return (v[l.a] - v[l.b]) * static_cast<double>(l.sign) <= 0.0;
+  };
+  bool any = false;
+  for (std::uint32_t i = 0; i < n; ++i)
+    parent_[i] = i;
+  for (const Link& l : links_) {
+    if (l.axis != axis || !closing(l)) continue;
+    any = true;
+    member_[l.a] = 1;
+    if (bodies.immovable(l.b)) continue;
+    member_[l.b] = 1;
+    const std::uint32_t ra = find(l.a), rb = find(l.b);
+    // The smaller slot becomes the root, so groups do not depend on link order.
+    if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+  }
+  if (!any) return;
+
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!member_[i]) continue;
+    const std::uint32_t r = find(i);
+    mass_[r] = momentum_[r] = anchor_sum_[r] = restitution_[r] = spread_[r] = 0.0;
+    anchor_count_[r] = 0;
+  }
+  // Sums run in slot order: the same bits for any creation order.
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!member_[i]) continue;
+    const std::uint32_t r = find(i);
+    mass_[r] += bodies.mass[i];
+    momentum_[r] += bodies.mass[i] * v[i];
+    restitution_[r] = std::max(restitution_[r], bodies.restitution[i]);
+  }
+  for (const Link& l : links_) {
+    if (l.axis != axis || !bodies.immovable(l.b) || !closing(l)) continue;
+    const std::uint32_t r = find(l.a);
+    anchor_sum_[r] += v[l.b];
+    ++anchor_count_[r];
+    restitution_[r] = std::max(restitution_[r], bodies.restitution[l.b]);
+  }
+  // momentum_ becomes the group velocity: the anchors' mean (several only when a body is
+  // crushed between them) or the mass-weighted mean.
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!member_[i] || find(i) != i) continue;
+    momentum_[i] = anchor_count_[i] > 0 ? anchor_sum_[i] / static_cast<double>(anchor_count_[i])
+                                        : momentum_[i] / mass_[i];
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!member_[i]) continue;
+    const std::uint32_t r = find(i);
+    spread_[r] = std::max(spread_[r], std::abs(v[i] - momentum_[r]));
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (!member_[i]) continue;
+    const std::uint32_t r = find(i);
+    const double group_v = momentum_[r];
+    const double e = restitution_[r];
+    v[i] =
+        (e > 0.0 && spread_[r] >= restitution_threshold) ? group_v - e * (v[i] - group_v) : group_v;
+  }
+}
+
+}  // namespace chain::detail

@@ -1,0 +1,44 @@
+// The inelastic velocity rule.
+//
+// Every push between two bodies is recorded as a link along its axis. After the pushes of a
+// step, the dynamic bodies linked along an axis (only links whose bodies were closing or at rest
+// relative to each other) form a group that leaves with one velocity on that axis: the
+// mass-weighted mean, which conserves momentum as a perfectly inelastic collision does, or, when
+// the group was pushed against immovable bodies, their velocity. With restitution, each body
+// instead reverses its velocity relative to the group's, scaled by the group's restitution.
+#pragma once
+
+#include "bodies.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace chain::detail {
+
+class VelocityResponse {
+ public:
+  void clear() { links_.clear(); }
+  // `a` was pushed out of `b` along axis (0 = x, 1 = y) in direction sign.
+  void add(std::uint32_t a, std::uint32_t b, int axis, double sign) {
+    links_.push_back(
+        {a, b, static_cast<std::uint8_t>(axis), sign > 0.0 ? std::int8_t{1} : std::int8_t{-1}});
+  }
+  void apply(Bodies& bodies, double restitution_threshold);
+
+ private:
+  struct Link {
+    std::uint32_t a, b;
+    std::uint8_t axis;
+    std::int8_t sign;
+  };
+  void apply_axis(Bodies& bodies, int axis, double restitution_threshold);
+  std::uint32_t find(std::uint32_t i);
+
+  std::vector<Link> links_;
+  std::vector<std::uint32_t> parent_;
+  std::vector<std::uint8_t> member_;
+  std::vector<double> mass_, momentum_, anchor_sum_, restitution_, spread_;
+  std::vector<std::uint32_t> anchor_count_;
+};
+
+}  // namespace chain::detail

@@ -1,0 +1,288 @@
+#include <chain/world.h>
+
+#include "bodies.h"
+#include "broadphase.h"
+#include "chain_resolver.h"
+#include "seed2014_resolver.h"
+#include "step_context.h"
+#include "velocity_response.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace chain {
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+// Empty if v is finite and within [lo, hi]; else "<field> must be ..., got v".
+std::string check_range(const char* field, double v, double lo, double hi, const char* what) {
+  if (!std::isfinite(v)) return std::string(field) + " must be a finite number, got " + number(v);
+  if (v < lo || v > hi) return std::string(field) + " must be " + what + ", got " + number(v);
+  return {};
+}
+
+}  // namespace
+
+std::string validate(const BodyDef& def) {
+  const bool dynamic = def.type == BodyType::kDynamic;
+  if (def.type != BodyType::kStatic && def.type != BodyType::kKinematic && !dynamic) {
+    return "type must be static, kinematic or dynamic";
+  }
+  for (const std::string& e :
+       {check_range("center.x", def.center.x, -kMaxCoordinate, kMaxCoordinate, "within +-1e9 m"),
+        check_range("center.y", def.center.y, -kMaxCoordinate, kMaxCoordinate, "within +-1e9 m"),
+        check_range("half_extents.x", def.half_extents.x, 0.0, kMaxHalfExtent, "> 0 and <= 1e8 m"),
+        check_range("half_extents.y", def.half_extents.y, 0.0, kMaxHalfExtent, "> 0 and <= 1e8 m"),
+        check_range("velocity.x", def.velocity.x, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s"),
+        check_range("velocity.y", def.velocity.y, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s"),
+        check_range("restitution", def.restitution, 0.0, 1.0, "in [0, 1]")}) {
+    if (!e.empty()) return e;
+  }
+  if (def.half_extents.x <= 0.0)
+    return "half_extents.x must be > 0, got " + number(def.half_extents.x);
+  if (def.half_extents.y <= 0.0)
+    return "half_extents.y must be > 0, got " + number(def.half_extents.y);
+  if (def.type == BodyType::kStatic && (def.velocity.x != 0.0 || def.velocity.y != 0.0)) {
+    return "velocity must be zero for a static body (make it kinematic to move it)";
+  }
+  if (dynamic) {
+    if (!std::isfinite(def.mass) || def.mass <= 0.0 || def.mass > kMaxMass) {
+      return "mass must be > 0 and <= 1e18 kg for a dynamic body, got " + number(def.mass);
+    }
+    std::string e = check_range("gravity_scale", def.gravity_scale, -1.0e6, 1.0e6, "within +-1e6");
+    if (!e.empty()) return e;
+  }
+  return {};
+}
+
+std::string validate(const WorldDef& def) {
+  if (def.variant != Variant::kModern && def.variant != Variant::kSeed2014) {
+    return "variant must be modern or seed2014";
+  }
+  if (def.velocity_rule != VelocityRule::kZero && def.velocity_rule != VelocityRule::kInelastic) {
+    return "velocity_rule must be zero or inelastic";
+  }
+  for (const auto& e :
+       {check_range("gravity.x", def.gravity.x, -kMaxGravity, kMaxGravity, "within +-1e6 m/s^2"),
+        check_range("gravity.y", def.gravity.y, -kMaxGravity, kMaxGravity, "within +-1e6 m/s^2"),
+        check_range("touch_tolerance", def.touch_tolerance, 0.0, 1.0, "in [0, 1] m"),
+        check_range("restitution_threshold", def.restitution_threshold, 0.0, 1.0e6,
+                    "in [0, 1e6] m/s")}) {
+    if (!e.empty()) return e;
+  }
+  if (def.max_passes < 1 || def.max_passes > 1000) {
+    return "max_passes must be in [1, 1000], got " + std::to_string(def.max_passes);
+  }
+  if (def.budget_per_body < 1 || def.budget_per_body > 1000000) {
+    return "budget_per_body must be in [1, 1000000], got " + std::to_string(def.budget_per_body);
+  }
+  // Each level is a native stack frame; deeper than this risks the thread's stack.
+  if (def.seed_max_depth < 1 || def.seed_max_depth > 16384) {
+    return "seed_max_depth must be in [1, 16384], got " + std::to_string(def.seed_max_depth);
+  }
+  return {};
+}
+
+struct World::Impl {
+  WorldDef def;
+  detail::Bodies bodies;
+  std::vector<std::uint32_t> slot_of_id;      // indexed by BodyId value; kNoSlot once destroyed
+  std::vector<std::uint32_t> creation_order;  // dynamic slots, oldest first
+  bool dirty = false;
+  detail::Broadphase broadphase;
+  detail::VelocityResponse response;
+  detail::ChainResolver modern;
+  detail::Seed2014Resolver seed2014;
+  StepStats stats;
+  std::vector<detail::CrushRecord> crush_records;
+  std::vector<CrushEvent> crushes;
+
+  std::uint32_t slot(BodyId id) const {
+    if (id.value >= slot_of_id.size() || slot_of_id[id.value] == detail::kNoSlot) {
+      throw std::invalid_argument("no body with id " + std::to_string(id.value) + " in this world");
+    }
+    return slot_of_id[id.value];
+  }
+
+  void canonicalize() {
+    bodies.canonicalize(slot_of_id);
+    broadphase.configure(bodies);
+    creation_order.clear();
+    for (const std::uint32_t s : slot_of_id) {
+      if (s != detail::kNoSlot && s < bodies.dynamic_end) creation_order.push_back(s);
+    }
+    dirty = false;
+  }
+
+  void integrate(double dt) {
+    detail::Bodies& b = bodies;
+    for (std::uint32_t i = 0; i < b.movable_end; ++i) {
+      if (b.driven[i]) {
+        b.vx[i] = b.drive_x[i];
+        b.vy[i] = b.drive_y[i];
+      }
+      if (i < b.dynamic_end) {
+        b.vx[i] += def.gravity.x * b.gravity_scale[i] * dt;
+        b.vy[i] += def.gravity.y * b.gravity_scale[i] * dt;
+      }
+      b.x[i] += b.vx[i] * dt;
+      b.y[i] += b.vy[i] * dt;
+    }
+  }
+};
+
+World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
+  if (std::string e = validate(def); !e.empty()) throw std::invalid_argument("WorldDef: " + e);
+  impl_->def = def;
+}
+
+World::~World() = default;
+World::World(const World& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
+World& World::operator=(const World& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
+World::World(World&& other) noexcept = default;
+World& World::operator=(World&& other) noexcept = default;
+
+BodyId World::create_body(const BodyDef& def) {
+  if (std::string e = validate(def); !e.empty()) throw std::invalid_argument("BodyDef: " + e);
+  const auto id = static_cast<std::uint32_t>(impl_->slot_of_id.size());
+  if (id == BodyId::kInvalid) throw std::length_error("a world holds at most 2^32 - 1 bodies");
+  impl_->slot_of_id.push_back(impl_->bodies.size());
+  impl_->bodies.append(def, id);
+  impl_->dirty = true;
+  return BodyId{id};
+}
+
+void World::destroy_body(BodyId id) {
+  const std::uint32_t s = impl_->slot(id);
+  const std::uint32_t moved = impl_->bodies.swap_remove(s);
+  if (moved != detail::kNoSlot) impl_->slot_of_id[moved] = s;
+  impl_->slot_of_id[id.value] = detail::kNoSlot;
+  impl_->dirty = true;
+}
+
+bool World::contains(BodyId id) const {
+  return id.value < impl_->slot_of_id.size() && impl_->slot_of_id[id.value] != detail::kNoSlot;
+}
+
+std::size_t World::body_count() const {
+  return impl_->bodies.size();
+}
+
+void World::set_drive(BodyId id, Vec2 velocity) {
+  const std::uint32_t s = impl_->slot(id);
+  if (impl_->bodies.type[s] == BodyType::kStatic) {
+    throw std::invalid_argument("a static body cannot be driven");
+  }
+  if (std::string e =
+          check_range("drive velocity.x", velocity.x, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s") +
+          check_range("drive velocity.y", velocity.y, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s");
+      !e.empty()) {
+    throw std::invalid_argument(e);
+  }
+  impl_->bodies.driven[s] = 1;
+  impl_->bodies.drive_x[s] = velocity.x;
+  impl_->bodies.drive_y[s] = velocity.y;
+}
+
+void World::clear_drive(BodyId id) {
+  impl_->bodies.driven[impl_->slot(id)] = 0;
+}
+
+void World::set_velocity(BodyId id, Vec2 velocity) {
+  const std::uint32_t s = impl_->slot(id);
+  if (impl_->bodies.type[s] == BodyType::kStatic) {
+    throw std::invalid_argument("a static body cannot have a velocity");
+  }
+  if (std::string e =
+          check_range("velocity.x", velocity.x, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s") +
+          check_range("velocity.y", velocity.y, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s");
+      !e.empty()) {
+    throw std::invalid_argument(e);
+  }
+  impl_->bodies.vx[s] = velocity.x;
+  impl_->bodies.vy[s] = velocity.y;
+}
+
+Vec2 World::position(BodyId id) const {
+  const std::uint32_t s = impl_->slot(id);
+  return {impl_->bodies.x[s], impl_->bodies.y[s]};
+}
+
+Vec2 World::velocity(BodyId id) const {
+  const std::uint32_t s = impl_->slot(id);
+  return {impl_->bodies.vx[s], impl_->bodies.vy[s]};
+}
+
+std::uint8_t World::touching_flags(BodyId id) const {
+  return impl_->bodies.touching[impl_->slot(id)];
+}
+
+void World::read_state(std::span<const BodyId> ids, std::span<Vec2> positions,
+                       std::span<Vec2> velocities) const {
+  const detail::Bodies& b = impl_->bodies;
+  if ((!positions.empty() && positions.size() < ids.size()) ||
+      (!velocities.empty() && velocities.size() < ids.size())) {
+    throw std::invalid_argument("read_state: an output span is shorter than ids");
+  }
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    const std::uint32_t s = impl_->slot(ids[k]);
+    if (!positions.empty()) positions[k] = {b.x[s], b.y[s]};
+    if (!velocities.empty()) velocities[k] = {b.vx[s], b.vy[s]};
+  }
+}
+
+void World::step(double dt) {
+  if (!std::isfinite(dt) || dt <= 0.0) {
+    throw std::invalid_argument("step: dt must be finite and > 0, got " + number(dt));
+  }
+  Impl& w = *impl_;
+  if (w.dirty) w.canonicalize();
+  w.stats = StepStats{};
+  w.crush_records.clear();
+  w.response.clear();
+  std::fill(w.bodies.touching.begin(), w.bodies.touching.end(), std::uint8_t{0});
+
+  w.integrate(dt);
+  const std::uint64_t budget =
+      static_cast<std::uint64_t>(w.def.budget_per_body) * w.bodies.size() + 1024u;
+  detail::StepContext ctx{w.bodies, w.broadphase,    w.response, w.def,
+                          w.stats,  w.crush_records, budget};
+  if (w.def.variant == Variant::kModern) {
+    w.modern.resolve(ctx);
+  } else {
+    w.seed2014.resolve(ctx, w.creation_order);
+  }
+  if (w.def.velocity_rule == VelocityRule::kInelastic) {
+    w.response.apply(w.bodies, w.def.restitution_threshold);
+  }
+  w.crushes.clear();
+  for (const detail::CrushRecord& r : w.crush_records) {
+    w.crushes.push_back({BodyId{w.bodies.id[r.body]}, BodyId{w.bodies.id[r.anchor]},
+                         BodyId{w.bodies.id[r.blocker]}, r.axis});
+  }
+}
+
+const StepStats& World::last_step_stats() const {
+  return impl_->stats;
+}
+std::span<const CrushEvent> World::crush_events() const {
+  return impl_->crushes;
+}
+const WorldDef& World::def() const {
+  return impl_->def;
+}
+
+}  // namespace chain

@@ -1,0 +1,81 @@
+// Once warmed up, a step allocates nothing: every buffer keeps its capacity from step to step.
+// This executable replaces the global operator new to count allocations while a flag is set.
+#include "world_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+namespace {
+std::atomic<bool> g_counting{false};
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t n) {
+  if (g_counting.load(std::memory_order_relaxed))
+    g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) {
+  return operator new(n);
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+namespace chain::testing {
+namespace {
+
+long allocations_during(World& w, int steps) {
+  g_allocations = 0;
+  g_counting = true;
+  for (int s = 0; s < steps; ++s)
+    w.step(1.0 / 60.0);
+  g_counting = false;
+  return g_allocations;
+}
+
+// A pyramid, a driven pusher against a row, a box being crushed by a lift and a falling pile:
+// pushes, chains, crushes and velocity groups every step.
+void build_busy_scene(World& w) {
+  add_floor(w, 100.0);
+  for (int row = 0; row < 12; ++row) {
+    for (int k = 0; k < 12 - row; ++k) {
+      w.create_body(dynamic_box(static_cast<double>(k) - 0.5 * static_cast<double>(11 - row) - 30.0,
+                                0.5 + static_cast<double>(row)));
+    }
+  }
+  const BodyId pusher = w.create_body(dynamic_box(0.0, 0.5));
+  for (int i = 1; i <= 20; ++i)
+    w.create_body(dynamic_box(static_cast<double>(i), 0.5));
+  w.set_drive(pusher, {1.0, 0.0});
+  w.create_body(dynamic_box(40.0, 0.5));
+  w.create_body(kinematic_box(40.0, 1.45, 2.0, 0.5, {0.0, -0.001}));  // squeezing already
+}
+
+TEST(Allocation, WarmedUpStepsAllocateNothing) {
+  for (const Variant v : {Variant::kModern, Variant::kSeed2014}) {
+    for (const VelocityRule rule : {VelocityRule::kZero, VelocityRule::kInelastic}) {
+      World w(world_def(v, rule));
+      build_busy_scene(w);
+      allocations_during(w, 30);  // warm-up: buffers reach their working size
+      EXPECT_EQ(allocations_during(w, 120), 0) << variant_name(v);
+      EXPECT_GT(w.last_step_stats().resolve_calls, 0u);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace chain::testing

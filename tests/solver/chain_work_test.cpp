@@ -1,0 +1,169 @@
+// Bounded work: pyramids, long chains and dense piles finish every step within the budget, and
+// a pyramid stands.
+#include "world_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+namespace chain::testing {
+namespace {
+
+constexpr double kDt = 1.0 / 60.0;
+
+struct Scene {
+  std::vector<BodyId> ids;
+  std::vector<Vec2> half;
+  std::vector<Vec2> start;
+};
+
+// Box2D v3's large_pyramid layout: rows of touching unit boxes on a static ground.
+Scene build_pyramid(World& w, int base) {
+  Scene s;
+  s.ids.push_back(add_floor(w, 2.0 * static_cast<double>(base)));
+  s.half.push_back({2.0 * static_cast<double>(base), 1.0});
+  for (int row = 0; row < base; ++row) {
+    for (int k = 0; k < base - row; ++k) {
+      const double x = static_cast<double>(k) - 0.5 * static_cast<double>(base - row - 1);
+      s.ids.push_back(w.create_body(dynamic_box(x, 0.5 + static_cast<double>(row))));
+      s.half.push_back({0.5, 0.5});
+    }
+  }
+  for (const BodyId id : s.ids)
+    s.start.push_back(w.position(id));
+  return s;
+}
+
+TEST(ChainWork, Base30PyramidStandsFor500Steps) {
+  for (const VelocityRule rule : {VelocityRule::kZero, VelocityRule::kInelastic}) {
+    World w(world_def(Variant::kModern, rule));
+    const Scene s = build_pyramid(w, 30);
+    for (int step = 0; step < 500; ++step) {
+      w.step(kDt);
+      ASSERT_EQ(w.last_step_stats().budget_hits, 0u);
+    }
+    double drift = 0.0;
+    for (std::size_t i = 0; i < s.ids.size(); ++i) {
+      const Vec2 p = w.position(s.ids[i]);
+      drift = std::max(drift, std::hypot(p.x - s.start[i].x, p.y - s.start[i].y));
+    }
+    EXPECT_LT(drift, 0.01);
+    EXPECT_LT(max_penetration(w, s.ids, s.half), 1e-3);
+  }
+}
+
+// Each body joins a chain once: a pyramid costs work in proportion to its size. The 2014 chain
+// has no visited set; it re-walks the pyramid from every supporting box and runs into its budget.
+TEST(ChainWork, PyramidWorkIsLinearInModernAndExplodesInSeed2014) {
+  auto calls = [](Variant v, int base) {
+    World w(world_def(v, VelocityRule::kZero));
+    build_pyramid(w, base);
+    std::uint64_t total = 0;
+    for (int step = 0; step < 10; ++step) {
+      w.step(kDt);
+      total += w.last_step_stats().resolve_calls;
+    }
+    return static_cast<double>(total) / 10.0;
+  };
+  const double modern10 = calls(Variant::kModern, 10), modern40 = calls(Variant::kModern, 40);
+  const double boxes10 = 55.0, boxes40 = 820.0;
+  EXPECT_LT(modern40 / boxes40, 2.0 * modern10 / boxes10);  // per-box work does not grow
+  EXPECT_GT(calls(Variant::kSeed2014, 10), 4.0 * modern10);
+}
+
+// A heavy pusher hands almost all of its push down a 10,000-box row to the wall, so the chain
+// really runs 10,000 deep (with a light pusher the overlap handed on shrinks as 1/k and falls
+// below the touch tolerance long before the wall). 10 cm boxes keep double spacing fine.
+TEST(ChainWork, TenThousandBoxRowIntoAWallChainsFullyAndNothingMoves) {
+  for (const Variant v : {Variant::kModern, Variant::kSeed2014}) {
+    World w(world_def(v, VelocityRule::kInelastic, {0.0, 0.0}));
+    const int n = 10000;
+    const BodyId pusher = w.create_body(dynamic_box(0.0, 0.0, 0.05, 1.0e6));
+    std::vector<BodyId> row;
+    for (int i = 1; i <= n; ++i) {
+      row.push_back(w.create_body(dynamic_box(0.1 * static_cast<double>(i), 0.0, 0.05)));
+    }
+    w.create_body(static_box(0.1 * static_cast<double>(n + 1), 0.0, 0.05, 1.0));
+    w.set_drive(pusher, {1.0, 0.0});
+    for (int step = 0; step < 3; ++step)
+      w.step(kDt);
+    if (v == Variant::kModern) {
+      EXPECT_EQ(w.last_step_stats().budget_hits, 0u);
+      EXPECT_GE(w.last_step_stats().max_depth, static_cast<std::uint32_t>(n));
+      EXPECT_NEAR(w.position(pusher).x, 0.0, 1e-3);
+      EXPECT_NEAR(w.position(row[n / 2]).x, 0.1 * static_cast<double>(n / 2 + 1), 1e-3);
+    } else {
+      // Recursion is capped at seed_max_depth: the cut is counted, never a crash.
+      EXPECT_GT(w.last_step_stats().budget_hits, 0u);
+      EXPECT_LE(w.last_step_stats().max_depth, static_cast<std::uint32_t>(w.def().seed_max_depth));
+    }
+  }
+}
+
+// 400 boxes created deep inside each other, in 15 columns (a box fits its column, so vertical
+// pushes can always separate them), settle within the budget to under 1 mm of overlap.
+TEST(ChainWork, DenseOverlappingPileStaysWithinBudgetAndSeparates) {
+  World w(world_def(Variant::kModern, VelocityRule::kInelastic));
+  std::vector<BodyId> ids = {w.create_body(static_box(0.0, -1.0, 30.0, 1.0)),
+                             w.create_body(static_box(-11.0, 16.0, 1.0, 16.0)),
+                             w.create_body(static_box(11.0, 16.0, 1.0, 16.0))};
+  std::vector<Vec2> half = {{30.0, 1.0}, {1.0, 16.0}, {1.0, 16.0}};
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> column(-7, 7);
+  std::uniform_real_distribution<double> y(0.5, 8.0), h(0.2, 0.6), jitter(-0.04, 0.04);
+  for (int i = 0; i < 400; ++i) {
+    const double hh = h(rng);
+    ids.push_back(
+        w.create_body(dynamic_box(1.3 * column(rng) + jitter(rng), y(rng), hh, hh * hh * 4.0)));
+    half.push_back({hh, hh});
+  }
+  const std::uint64_t budget =
+      static_cast<std::uint64_t>(w.def().budget_per_body) * ids.size() + 1024;
+  double first = 0.0;
+  for (int step = 0; step < 300; ++step) {
+    w.step(kDt);
+    ASSERT_LE(w.last_step_stats().resolve_calls, budget);
+    if (step == 0) first = max_penetration(w, ids, half);
+  }
+  EXPECT_GT(first, 0.0);
+  EXPECT_LT(max_penetration(w, ids, half), 1e-3);
+  EXPECT_EQ(w.last_step_stats().crush_events, 0u);
+}
+
+// Five 1 m boxes between walls 4 m apart cannot all fit: every step ends, reports the squeeze,
+// and keeps every box between the walls.
+TEST(ChainWork, RowWiderThanItsGapIsCrushedNotLooped) {
+  World w(world_def(Variant::kModern, VelocityRule::kInelastic, {0.0, 0.0}));
+  w.create_body(static_box(-2.5, 0.0, 0.5, 2.0));
+  w.create_body(static_box(2.5, 0.0, 0.5, 2.0));
+  std::vector<BodyId> row;
+  for (int i = 0; i < 5; ++i)
+    row.push_back(w.create_body(dynamic_box(-1.6 + 0.8 * i, 0.0)));
+  for (int step = 0; step < 60; ++step) {
+    w.step(kDt);
+    ASSERT_GE(w.last_step_stats().crush_events, 1u);
+    ASSERT_EQ(w.last_step_stats().budget_hits, 0u);
+  }
+  for (const BodyId id : row) {
+    EXPECT_GE(w.position(id).x, -2.0);
+    EXPECT_LE(w.position(id).x, 2.0);
+  }
+}
+
+TEST(ChainWork, ExhaustedBudgetIsCountedAndTheStepStillEnds) {
+  WorldDef d = world_def(Variant::kModern, VelocityRule::kZero);
+  d.budget_per_body = 1;
+  World w(d);
+  std::vector<BodyId> ids = {add_floor(w)};
+  for (int i = 0; i < 200; ++i) {  // 200 boxes created inside each other
+    ids.push_back(w.create_body(dynamic_box(0.01 * static_cast<double>(i), 0.5)));
+  }
+  w.step(kDt);
+  EXPECT_GT(w.last_step_stats().budget_hits, 0u);
+  EXPECT_LE(w.last_step_stats().resolve_calls, 201u + 1024u);
+}
+
+}  // namespace
+}  // namespace chain::testing

@@ -1,0 +1,158 @@
+// Modern results depend on the bodies, never on the order they were created in, and repeat to
+// the bit. The 2014 variant is order-dependent by design; one test pins that down.
+#include "world_helpers.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <numeric>
+#include <random>
+#include <vector>
+
+namespace chain::testing {
+namespace {
+
+constexpr double kDt = 1.0 / 60.0;
+
+// Stacks, a driven pusher against a row, a falling heavy box, a rising lift, a wall and a
+// squeeze under a ceiling: every kind of contact the solver knows.
+std::vector<BodyDef> mixed_scene() {
+  std::vector<BodyDef> defs;
+  defs.push_back(static_box(0.0, -1.0, 40.0, 1.0));  // floor
+  defs.push_back(static_box(12.0, 3.0, 0.5, 3.0));   // wall
+  defs.push_back(static_box(-10.0, 3.1, 2.0, 0.5));  // ceiling over the lift
+  for (int i = 0; i < 5; ++i) {
+    defs.push_back(
+        dynamic_box(-4.0, 0.5 + static_cast<double>(i), 0.5, 1.0 + static_cast<double>(i)));
+  }
+  for (int i = 0; i < 6; ++i)
+    defs.push_back(dynamic_box(2.0 + static_cast<double>(i), 0.5));
+  defs.push_back(dynamic_box(1.0, 0.5, 0.5, 3.0));   // the pusher (driven below)
+  defs.push_back(dynamic_box(4.3, 4.0, 1.0, 20.0));  // heavy box falling onto the row
+  defs.push_back(kinematic_box(-10.0, 0.25, 1.5, 0.25, {0.0, 0.5}));  // rising lift
+  defs.push_back(dynamic_box(-10.0, 1.0, 0.5, 2.0));                  // rider, to be squeezed
+  BodyDef bouncy = dynamic_box(-6.0, 3.0, 0.3, 0.5);
+  bouncy.restitution = 0.6;
+  bouncy.velocity = {1.5, -2.0};
+  defs.push_back(bouncy);
+  return defs;
+}
+
+constexpr std::size_t kPusher = 14;
+
+std::vector<Vec2> run_in_order(const std::vector<BodyDef>& defs,
+                               const std::vector<std::size_t>& order, WorldDef def, int steps) {
+  World w(def);
+  std::vector<BodyId> id_of(defs.size());
+  for (const std::size_t k : order)
+    id_of[k] = w.create_body(defs[k]);
+  w.set_drive(id_of[kPusher], {1.5, 0.0});
+  for (int s = 0; s < steps; ++s)
+    w.step(kDt);
+  std::vector<Vec2> out;
+  for (const BodyId id : id_of) {
+    out.push_back(w.position(id));
+    out.push_back(w.velocity(id));
+  }
+  return out;
+}
+
+bool same_bits(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (std::bit_cast<std::uint64_t>(a[i].x) != std::bit_cast<std::uint64_t>(b[i].x) ||
+        std::bit_cast<std::uint64_t>(a[i].y) != std::bit_cast<std::uint64_t>(b[i].y)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::vector<std::vector<std::size_t>> permutations(std::size_t n) {
+  std::vector<std::size_t> identity(n);
+  std::iota(identity.begin(), identity.end(), std::size_t{0});
+  std::vector<std::vector<std::size_t>> out = {identity, {identity.rbegin(), identity.rend()}};
+  std::mt19937 rng(2014);
+  for (int k = 0; k < 5; ++k) {
+    std::vector<std::size_t> p = identity;
+    std::shuffle(p.begin(), p.end(), rng);
+    out.push_back(p);
+  }
+  return out;
+}
+
+class OrderIndependence : public ::testing::TestWithParam<VelocityRule> {};
+
+INSTANTIATE_TEST_SUITE_P(Modern, OrderIndependence,
+                         ::testing::Values(VelocityRule::kZero, VelocityRule::kInelastic),
+                         [](const auto& info) {
+                           return info.param == VelocityRule::kZero ? "zero" : "inelastic";
+                         });
+
+TEST_P(OrderIndependence, EveryCreationOrderGivesTheSameBits) {
+  const std::vector<BodyDef> defs = mixed_scene();
+  const WorldDef def = world_def(Variant::kModern, GetParam());
+  const auto orders = permutations(defs.size());
+  const std::vector<Vec2> reference = run_in_order(defs, orders[0], def, 240);
+  for (std::size_t k = 1; k < orders.size(); ++k) {
+    EXPECT_TRUE(same_bits(reference, run_in_order(defs, orders[k], def, 240)))
+        << "permutation " << k;
+  }
+}
+
+TEST(Determinism, RepeatedRunsGiveTheSameBits) {
+  const std::vector<BodyDef> defs = mixed_scene();
+  const auto order = permutations(defs.size())[3];
+  for (const Variant v : {Variant::kModern, Variant::kSeed2014}) {
+    const WorldDef def = world_def(v, VelocityRule::kInelastic);
+    EXPECT_TRUE(same_bits(run_in_order(defs, order, def, 200), run_in_order(defs, order, def, 200)))
+        << variant_name(v);
+  }
+}
+
+TEST(Determinism, CopiedWorldContinuesIdentically) {
+  World w(world_def(Variant::kModern, VelocityRule::kInelastic));
+  std::vector<BodyId> ids;
+  for (const BodyDef& d : mixed_scene())
+    ids.push_back(w.create_body(d));
+  for (int s = 0; s < 50; ++s)
+    w.step(kDt);
+  World copy = w;
+  for (int s = 0; s < 50; ++s) {
+    w.step(kDt);
+    copy.step(kDt);
+  }
+  for (const BodyId id : ids) {
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(w.position(id).x),
+              std::bit_cast<std::uint64_t>(copy.position(id).x));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(w.position(id).y),
+              std::bit_cast<std::uint64_t>(copy.position(id).y));
+  }
+}
+
+// ALGORITHM-2014.md, bug 2: a body squeezed between two statics ends inside one of them, and
+// which one depends on the order the pairs are met. Modern centres it, whatever the order.
+TEST(Determinism, SqueezeOutcomeDependsOnCreationOrderOnlyInSeed2014) {
+  const std::vector<BodyDef> defs = {static_box(0.0, -1.0, 5.0, 1.0),  // floor, top at 0
+                                     static_box(0.0, 1.8, 5.0, 1.0),   // ceiling, bottom at 0.8
+                                     dynamic_box(0.0, 0.45)};          // 1 m box in 0.8 m
+  auto final_y = [&](Variant v, bool floor_first) {
+    World w(world_def(v, VelocityRule::kZero, {0.0, 0.0}));
+    BodyId box;
+    if (floor_first) {
+      w.create_body(defs[0]), w.create_body(defs[1]), box = w.create_body(defs[2]);
+    } else {
+      w.create_body(defs[1]), w.create_body(defs[0]), box = w.create_body(defs[2]);
+    }
+    w.step(kDt);
+    return w.position(box).y;
+  };
+  EXPECT_NE(final_y(Variant::kSeed2014, true), final_y(Variant::kSeed2014, false));
+  EXPECT_EQ(final_y(Variant::kModern, true), final_y(Variant::kModern, false));
+  EXPECT_NEAR(final_y(Variant::kModern, true), 0.4, 1e-12);  // midway between 0 and 0.8
+}
+
+}  // namespace
+}  // namespace chain::testing

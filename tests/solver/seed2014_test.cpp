@@ -1,0 +1,74 @@
+// The 2014 variant keeps the quirks ALGORITHM-2014.md documents; these pin them down against
+// hand-worked cases, next to what modern does instead.
+#include "world_helpers.h"
+
+#include <gtest/gtest.h>
+
+namespace chain::testing {
+namespace {
+
+constexpr double kDt = 1.0 / 60.0;
+
+// Section 2: "A = (0,0,100x40) against B = (5,10,10x20) yields (0,-30), although +15 on x would
+// separate them." In y-up metres (1 px = 1 m): A spans x [0,100], y [-40,0]; B is static.
+TEST(Seed2014, PushDirectionComesFromEdgesNotCentres) {
+  auto resolve = [](Variant v) {
+    World w(world_def(v, VelocityRule::kZero, {0.0, 0.0}));
+    BodyDef a = dynamic_box(50.0, -20.0);
+    a.half_extents = {50.0, 20.0};
+    const BodyId id = w.create_body(a);
+    w.create_body(static_box(10.0, -20.0, 5.0, 10.0));
+    w.step(kDt);
+    return w.position(id);
+  };
+  const Vec2 seed = resolve(Variant::kSeed2014);
+  EXPECT_FLOAT_EQ(seed.x, 50.0);
+  EXPECT_FLOAT_EQ(seed.y, -20.0 + 30.0);  // y-down (0,-30) is 30 up
+  const Vec2 modern = resolve(Variant::kModern);
+  EXPECT_FLOAT_EQ(modern.x, 50.0 + 15.0);  // the shortest way out
+  EXPECT_FLOAT_EQ(modern.y, -20.0);
+}
+
+TEST(Seed2014, TouchingIsNotPushing) {
+  for (const Variant v : {Variant::kModern, Variant::kSeed2014}) {
+    World w(world_def(v, VelocityRule::kZero, {0.0, 0.0}));
+    const BodyId a = w.create_body(dynamic_box(0.0, 0.0));
+    const BodyId b = w.create_body(dynamic_box(1.0, 0.0));
+    w.step(kDt);
+    EXPECT_FLOAT_EQ(w.position(a).x, 0.0);
+    EXPECT_FLOAT_EQ(w.position(b).x, 1.0);
+    EXPECT_EQ(w.touching_flags(a), 0u);  // flags come from pushes, as in the 2014 engine
+  }
+}
+
+// Section 5: every dynamic body takes its turn as `a`, so each dynamic pair is met twice; a
+// fresh overlap between two free boxes is split evenly either way.
+TEST(Seed2014, EqualMassesSplitAnOverlapEvenly) {
+  World w(world_def(Variant::kSeed2014, VelocityRule::kZero, {0.0, 0.0}));
+  const BodyId a = w.create_body(dynamic_box(0.0, 0.0));
+  const BodyId b = w.create_body(dynamic_box(0.8, 0.0));
+  w.step(kDt);
+  EXPECT_FLOAT_EQ(w.position(a).x, -0.1);
+  EXPECT_FLOAT_EQ(w.position(b).x, 0.9);
+}
+
+// Bug 3: the grid is built once per step and never updated. A body pushed further than the
+// grid's reach during the step is not met by the bodies near its new place until next step.
+TEST(Seed2014, StaleGridMissesPairsCreatedByALongPush) {
+  auto overlap_after_one_step = [](Variant v) {
+    World w(world_def(v, VelocityRule::kZero, {0.0, 0.0}));
+    // A heavy box created deep inside a light one shoves it 1.5 m right, onto a third box
+    // two grid cells from where the grid saw it.
+    BodyDef heavy = dynamic_box(0.0, 0.0, 2.0, 1000.0);
+    w.create_body(heavy);
+    const BodyId light = w.create_body(dynamic_box(1.0, 0.0));
+    const BodyId far = w.create_body(dynamic_box(3.2, 0.0));
+    w.step(kDt);
+    return 1.0 - (w.position(far).x - w.position(light).x);
+  };
+  EXPECT_GT(overlap_after_one_step(Variant::kSeed2014), 0.1);
+  EXPECT_LE(overlap_after_one_step(Variant::kModern), 1e-9);
+}
+
+}  // namespace
+}  // namespace chain::testing

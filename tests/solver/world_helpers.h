@@ -1,0 +1,68 @@
+// Small builders shared by the solver tests: boxes, floors and rows in a few lines.
+#pragma once
+
+#include <chain/world.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace chain::testing {
+
+inline BodyDef dynamic_box(double x, double y, double half = 0.5, double mass = 1.0) {
+  BodyDef d;
+  d.type = BodyType::kDynamic;
+  d.center = {x, y};
+  d.half_extents = {half, half};
+  d.mass = mass;
+  return d;
+}
+
+inline BodyDef static_box(double x, double y, double hx, double hy) {
+  BodyDef d;
+  d.type = BodyType::kStatic;
+  d.center = {x, y};
+  d.half_extents = {hx, hy};
+  return d;
+}
+
+inline BodyDef kinematic_box(double x, double y, double hx, double hy, Vec2 velocity) {
+  BodyDef d = static_box(x, y, hx, hy);
+  d.type = BodyType::kKinematic;
+  d.velocity = velocity;
+  return d;
+}
+
+// A static floor whose top face is y = 0.
+inline BodyId add_floor(World& w, double half_width = 50.0) {
+  return w.create_body(static_box(0.0, -1.0, half_width, 1.0));
+}
+
+inline WorldDef world_def(Variant variant, VelocityRule rule, Vec2 gravity = {0.0, -10.0}) {
+  WorldDef d;
+  d.variant = variant;
+  d.velocity_rule = rule;
+  d.gravity = gravity;
+  return d;
+}
+
+// Depth of the deepest overlap between any two bodies (brute force; tests only).
+inline double max_penetration(const World& w, const std::vector<BodyId>& ids,
+                              const std::vector<Vec2>& half) {
+  double deepest = 0.0;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    for (std::size_t j = i + 1; j < ids.size(); ++j) {
+      const Vec2 a = w.position(ids[i]), b = w.position(ids[j]);
+      const double ox = half[i].x + half[j].x - std::abs(a.x - b.x);
+      const double oy = half[i].y + half[j].y - std::abs(a.y - b.y);
+      if (ox > 0.0 && oy > 0.0) deepest = std::max(deepest, std::min(ox, oy));
+    }
+  }
+  return deepest;
+}
+
+inline const char* variant_name(Variant v) {
+  return v == Variant::kModern ? "modern" : "seed2014";
+}
+
+}  // namespace chain::testing

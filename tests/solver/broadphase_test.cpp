@@ -56,6 +56,9 @@ struct Mix {
   int n;
   double spread, min_half, max_half;
 };
+void PrintTo(const Mix& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class BroadphasePairs : public ::testing::TestWithParam<Mix> {};
 

@@ -19,6 +19,9 @@ struct BadBody {
   BodyDef def;
   const char* field;  // the reason must name it
 };
+void PrintTo(const BadBody& c, std::ostream* os) {
+  *os << c.name;
+}
 
 BodyDef with(BodyDef d, void (*edit)(BodyDef&)) {
   edit(d);

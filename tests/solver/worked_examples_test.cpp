@@ -121,6 +121,9 @@ struct StackCase {
   double bottom_mass, top_mass;
   VelocityRule rule;
 };
+void PrintTo(const StackCase& c, std::ostream* os) {
+  *os << c.name;
+}
 
 class RestingStack : public ::testing::TestWithParam<StackCase> {};
 

@@ -1,0 +1,140 @@
+#include "scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <unordered_set>
+
+namespace chainbench {
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+class Checker {
+ public:
+  void finite_within(const std::string& path, double v, double lo, double hi, const char* what) {
+    if (!std::isfinite(v)) {
+      add(path, "must be a finite number, got " + num(v));
+    } else if (v < lo || v > hi) {
+      add(path, std::string("must be ") + what + ", got " + num(v));
+    }
+  }
+  void positive_within(const std::string& path, double v, double hi, const char* what) {
+    if (!std::isfinite(v) || v <= 0.0 || v > hi) {
+      add(path, std::string("must be ") + what + ", got " + num(v));
+    }
+  }
+  void add(std::string path, std::string reason) {
+    issues.push_back({std::move(path), std::move(reason)});
+  }
+  std::vector<SceneIssue> issues;
+};
+
+}  // namespace
+
+std::vector<SceneIssue> validate(const Scene& s) {
+  namespace L = limits;
+  Checker c;
+  if (s.steps < 1 || s.steps > L::kMaxSteps)
+    c.add("steps", "must be in [1, 10000000], got " + std::to_string(s.steps));
+  if (!std::isfinite(s.dt) || s.dt < L::kMinDt || s.dt > L::kMaxDt)
+    c.add("dt", "must be in [1e-6, 1] s, got " + num(s.dt));
+  c.finite_within("gravity[0]", s.gravity.x, -L::kMaxGravity, L::kMaxGravity, "within +-1e4 m/s^2");
+  c.finite_within("gravity[1]", s.gravity.y, -L::kMaxGravity, L::kMaxGravity, "within +-1e4 m/s^2");
+  c.finite_within("friction", s.friction, 0.0, L::kMaxFriction, "in [0, 10]");
+  c.finite_within("restitution", s.restitution, 0.0, 1.0, "in [0, 1]");
+  if (s.bodies.empty()) c.add("bodies", "must hold at least one body");
+  if (s.bodies.size() > L::kMaxBodies)
+    c.add("bodies",
+          "holds " + std::to_string(s.bodies.size()) + " bodies, more than the limit of 4000000");
+  if (s.drivers.size() > L::kMaxDrivers) c.add("drivers", "holds more than 1000000 drivers");
+
+  std::unordered_set<std::string> names;
+  for (std::size_t i = 0; i < s.bodies.size() && i < L::kMaxBodies; ++i) {
+    const SceneBody& b = s.bodies[i];
+    const std::string at = "bodies[" + std::to_string(i) + "]";
+    if (!b.name.empty() && !names.insert(b.name).second)
+      c.add(at + ".name", "\"" + b.name + "\" names two bodies");
+    c.finite_within(at + ".center[0]", b.center.x, -L::kMaxCoordinate, L::kMaxCoordinate,
+                    "within +-1e8 m");
+    c.finite_within(at + ".center[1]", b.center.y, -L::kMaxCoordinate, L::kMaxCoordinate,
+                    "within +-1e8 m");
+    c.positive_within(at + ".half_extents[0]", b.half_extents.x, L::kMaxHalfExtent,
+                      "> 0 and <= 1e6 m");
+    c.positive_within(at + ".half_extents[1]", b.half_extents.y, L::kMaxHalfExtent,
+                      "> 0 and <= 1e6 m");
+    c.finite_within(at + ".velocity[0]", b.velocity.x, -L::kMaxSpeed, L::kMaxSpeed,
+                    "within +-1e5 m/s");
+    c.finite_within(at + ".velocity[1]", b.velocity.y, -L::kMaxSpeed, L::kMaxSpeed,
+                    "within +-1e5 m/s");
+    if (b.kind == BodyKind::kStatic && (b.velocity.x != 0.0 || b.velocity.y != 0.0)) {
+      c.add(at + ".velocity", "must be zero for a static body (make it kinematic to move it)");
+    }
+    if (b.kind == BodyKind::kDynamic) {
+      c.positive_within(at + ".mass", b.mass, L::kMaxMass, "> 0 and <= 1e15 kg for a dynamic body");
+      c.finite_within(at + ".gravity_scale", b.gravity_scale, -100.0, 100.0, "within +-100");
+    }
+    if (b.friction)
+      c.finite_within(at + ".friction", *b.friction, 0.0, L::kMaxFriction, "in [0, 10]");
+    if (b.restitution) c.finite_within(at + ".restitution", *b.restitution, 0.0, 1.0, "in [0, 1]");
+  }
+  for (std::size_t i = 0; i < s.drivers.size() && i < L::kMaxDrivers; ++i) {
+    const Driver& d = s.drivers[i];
+    const std::string at = "drivers[" + std::to_string(i) + "]";
+    if (d.body >= s.bodies.size()) {
+      c.add(at + ".body", "names no body of the scene");
+    } else if (s.bodies[d.body].kind == BodyKind::kStatic) {
+      c.add(at + ".body", "names a static body, which cannot be driven");
+    }
+    c.finite_within(at + ".velocity[0]", d.velocity.x, -L::kMaxSpeed, L::kMaxSpeed,
+                    "within +-1e5 m/s");
+    c.finite_within(at + ".velocity[1]", d.velocity.y, -L::kMaxSpeed, L::kMaxSpeed,
+                    "within +-1e5 m/s");
+    if (d.from_step < 0)
+      c.add(at + ".from_step", "must be >= 0, got " + std::to_string(d.from_step));
+    if (d.to_step < d.from_step)
+      c.add(at + ".to_step", "must be >= from_step, got " + std::to_string(d.to_step));
+  }
+  for (std::size_t i = 0; i < s.expect.size(); ++i) {
+    const Expectation& e = s.expect[i];
+    const std::string at = "expect[" + std::to_string(i) + "]";
+    if (e.body >= s.bodies.size()) c.add(at + ".body", "names no body of the scene");
+    c.finite_within(at + ".center[0]", e.center.x, -L::kMaxCoordinate, L::kMaxCoordinate,
+                    "within +-1e8 m");
+    c.finite_within(at + ".center[1]", e.center.y, -L::kMaxCoordinate, L::kMaxCoordinate,
+                    "within +-1e8 m");
+    c.positive_within(at + ".tolerance", e.tolerance, 1e6, "> 0 m");
+  }
+  return c.issues;
+}
+
+Extent initial_extent(const Scene& s) {
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool first = true;
+  for (const SceneBody& b : s.bodies) {
+    const double bx0 = b.center.x - b.half_extents.x, bx1 = b.center.x + b.half_extents.x;
+    const double by0 = b.center.y - b.half_extents.y, by1 = b.center.y + b.half_extents.y;
+    x0 = first ? bx0 : std::min(x0, bx0), x1 = first ? bx1 : std::max(x1, bx1);
+    y0 = first ? by0 : std::min(y0, by0), y1 = first ? by1 : std::max(y1, by1);
+    first = false;
+  }
+  return {{0.5 * (x0 + x1), 0.5 * (y0 + y1)}, 0.5 * std::hypot(x1 - x0, y1 - y0)};
+}
+
+const char* to_string(BodyKind kind) {
+  switch (kind) {
+    case BodyKind::kStatic:
+      return "static";
+    case BodyKind::kKinematic:
+      return "kinematic";
+    case BodyKind::kDynamic:
+      return "dynamic";
+  }
+  return "?";
+}
+
+}  // namespace chainbench

@@ -1,0 +1,100 @@
+// The scene model: one description of boxes, drives and expectations that every engine is built
+// from. Plain data in metres, kilograms and seconds, y up; body order is body identity.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace chainbench {
+
+struct Vec2d {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+enum class BodyKind { kStatic, kKinematic, kDynamic };
+
+struct SceneBody {
+  std::string name;
+  BodyKind kind = BodyKind::kDynamic;
+  Vec2d center;
+  Vec2d half_extents{0.5, 0.5};
+  Vec2d velocity;     // initial; a kinematic body keeps it
+  double mass = 1.0;  // dynamic bodies only
+  double gravity_scale = 1.0;
+  std::optional<double> friction;     // else the scene's
+  std::optional<double> restitution;  // else the scene's
+};
+
+// Sets the body's velocity at the start of every step n with from_step <= n < to_step.
+struct Driver {
+  std::size_t body = 0;
+  Vec2d velocity;
+  int from_step = 0;
+  int to_step = std::numeric_limits<int>::max();
+};
+
+// Where a body should be at the end of the run, within `tolerance` metres.
+struct Expectation {
+  std::size_t body = 0;
+  Vec2d center;
+  double tolerance = 0.01;
+};
+
+struct Scene {
+  std::string name;
+  std::string description;
+  Vec2d gravity{0.0, -10.0};
+  double dt = 1.0 / 60.0;
+  int steps = 120;
+  bool rotation = false;
+  double friction = 0.0;
+  double restitution = 0.0;
+  std::vector<SceneBody> bodies;
+  std::vector<Driver> drivers;
+  std::vector<Expectation> expect;
+
+  double friction_of(const SceneBody& b) const { return b.friction.value_or(friction); }
+  double restitution_of(const SceneBody& b) const { return b.restitution.value_or(restitution); }
+  bool has_gravity() const { return gravity.x != 0.0 || gravity.y != 0.0; }
+};
+
+// Limits every scene must respect, however it was made: they keep the engines in the range where
+// their arithmetic means something and a run in the range a machine can hold.
+namespace limits {
+inline constexpr int kMaxSteps = 10'000'000;
+inline constexpr std::size_t kMaxBodies = 4'000'000;
+inline constexpr std::size_t kMaxDrivers = 1'000'000;
+inline constexpr double kMinDt = 1e-6;
+inline constexpr double kMaxDt = 1.0;
+inline constexpr double kMaxCoordinate = 1e8;
+inline constexpr double kMaxHalfExtent = 1e6;
+inline constexpr double kMaxSpeed = 1e5;
+inline constexpr double kMaxMass = 1e15;
+inline constexpr double kMaxGravity = 1e4;
+inline constexpr double kMaxFriction = 10.0;
+}  // namespace limits
+
+// A problem found in a scene: where (a JSON path such as "bodies[3].half_extents") and why.
+struct SceneIssue {
+  std::string path;
+  std::string reason;
+};
+
+// Every violation of the rules above and of the body rules (sizes > 0, dynamic mass > 0, unique
+// names, drivers and expectations naming bodies that exist...). Empty when the scene is valid.
+std::vector<SceneIssue> validate(const Scene& scene);
+
+// The centre of the scene's bounding box and the largest distance from it to a box corner.
+struct Extent {
+  Vec2d center;
+  double radius = 0.0;
+};
+Extent initial_extent(const Scene& scene);
+
+const char* to_string(BodyKind kind);
+
+}  // namespace chainbench

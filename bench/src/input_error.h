@@ -1,0 +1,21 @@
+// Bad input from the user: a scene file, a --set, an engine spec, a command-line number. The
+// message names the source, the field and the reason; the command exits with status 2.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace chainbench {
+
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Parses all of `text` as a finite number, or throws InputError("<what>: ...").
+double parse_number(const std::string& what, const std::string& text);
+// Parses all of `text` as an integer in [lo, hi], or throws InputError("<what>: ...").
+long long parse_integer(const std::string& what, const std::string& text, long long lo,
+                        long long hi);
+
+}  // namespace chainbench

@@ -1,0 +1,31 @@
+// chainbench: runs the collision-chaining solver and Box2D on the same scenes and compares them.
+// Exit status: 0 done, 2 bad input or usage, 1 an internal failure.
+#include "commands.h"
+#include "input_error.h"
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+int main(int argc, char** argv) {
+  CLI::App app{"chainbench: collision chaining against Box2D, in numbers"};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "every subcommand's help");
+  int status = 0;
+  chainbench::add_list_commands(app, &status);
+  chainbench::add_run_command(app, &status);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  } catch (const chainbench::InputError& e) {
+    std::cerr << "chainbench: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "chainbench: internal error: " << e.what() << '\n';
+    return 1;
+  }
+  return status;
+}

@@ -1,0 +1,43 @@
+// What `chainbench run` reports: a table for people, JSON (DESIGN.md's chainbench.run/1) and CSV
+// for tools.
+#pragma once
+
+#include "metrics.h"
+#include "runner.h"
+#include "scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace chainbench {
+
+struct Comparison {
+  std::string engine;
+  std::string reference;
+  PositionError error;
+  double speedup = 0.0;  // reference median ms/step over the engine's
+};
+
+struct RunReport {
+  const Scene* scene = nullptr;
+  std::vector<EngineRun> runs;
+  std::optional<EngineRun> reference;  // the reference run, when it was not one of `runs`
+  std::string reference_spec;          // empty: no reference
+  std::vector<Comparison> comparison;  // each run against the reference, in run order
+};
+
+// Fills report.comparison from report.runs and the reference.
+void compare(RunReport& report);
+
+void print_run_table(std::ostream& out, const RunReport& report);
+nlohmann::ordered_json run_json(const RunReport& report);
+void write_run_csv(std::ostream& out, const RunReport& report);
+
+// A number for JSON: null when not finite (JSON has no NaN or infinity).
+nlohmann::ordered_json json_number(double v);
+
+}  // namespace chainbench

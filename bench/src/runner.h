@@ -1,0 +1,78 @@
+// Runs one engine on one scene: builds it (timed as setup), steps it (each step timed on the
+// steady clock, the first excluded), records the metrics that were asked for, and checks the
+// scene's expectations. Metrics and traces are computed between steps, outside the timer.
+#pragma once
+
+#include "engine.h"
+#include "engine_spec.h"
+#include "metrics.h"
+#include "scene.h"
+
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace chainbench {
+
+struct Timing {
+  double median_ms = 0.0;
+  double mean_ms = 0.0;
+  double p95_ms = 0.0;
+  double setup_ms = 0.0;
+  int samples = 0;
+};
+
+// Totals of the chaining solver's per-step counters over a run.
+struct ChainRunStats {
+  double resolve_calls_per_step = 0.0;
+  double passes_per_step = 0.0;
+  double contacts_per_step = 0.0;
+  std::uint32_t max_depth = 0;
+  std::uint64_t budget_hits = 0;
+  std::uint64_t crush_events = 0;
+};
+
+struct ExpectResult {
+  double max_error = 0.0;
+  bool pass = true;
+};
+
+struct EngineRun {
+  std::string engine;  // canonical spec
+  std::vector<Vec2d> final_positions;
+  std::vector<double> final_angles;
+  Timing timing;
+  Metrics metrics;
+  bool metrics_computed = false;
+  std::uint64_t hash = 0;
+  std::optional<ChainRunStats> chain;
+  std::optional<ExpectResult> expect;
+
+  // Finite, in bounds, no blow-up, and no chain cut by its budget; empty when not measured.
+  std::optional<bool> stable() const;
+};
+
+// Receives one row per body per step: the trace CSV of `chainbench run --trace`.
+class TraceWriter {
+ public:
+  explicit TraceWriter(std::ostream& out);
+  void write(const std::string& engine, int step, double time, const BodyState& state,
+             std::span<const double> displacement, std::span<const double> penetration);
+
+ private:
+  std::ostream& out_;
+};
+
+struct RunOptions {
+  MetricSelection metrics;
+  TraceWriter* trace = nullptr;
+  // Called now and then with (steps done, steps in all): for progress bars.
+  std::function<void(int, int)> progress;
+};
+
+EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOptions& options);
+
+}  // namespace chainbench

@@ -1,0 +1,135 @@
+#include "scene_library.h"
+
+#include "input_error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace chainbench {
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+}  // namespace
+
+double SceneParams::get(const std::string& key) const {
+  const auto it = values_.find(key);
+  if (it == values_.end()) throw std::logic_error("scene recipe reads undeclared parameter " + key);
+  return it->second;
+}
+
+const std::vector<SceneRecipe>& scene_library() {
+  static const std::vector<SceneRecipe> library = [] {
+    std::vector<SceneRecipe> all;
+    for (auto family : {stacking_scenes, pushing_scenes, seed2014_scenes}) {
+      for (SceneRecipe& r : family())
+        all.push_back(std::move(r));
+    }
+    return all;
+  }();
+  return library;
+}
+
+const SceneRecipe* find_recipe(std::string_view name) {
+  for (const SceneRecipe& r : scene_library()) {
+    if (r.name == name) return &r;
+  }
+  return nullptr;
+}
+
+std::vector<SceneParam> all_params(const SceneRecipe& recipe) {
+  std::vector<SceneParam> params = recipe.params;
+  params.push_back(
+      {"steps", static_cast<double>(recipe.steps), 1, limits::kMaxSteps, true, "steps to run"});
+  params.push_back({"dt", 1.0 / 60.0, limits::kMinDt, limits::kMaxDt, false, "time step, s"});
+  params.push_back(
+      {"friction", 0.0, 0, limits::kMaxFriction, false, "friction of every body (chain has none)"});
+  params.push_back({"restitution", 0.0, 0, 1, false, "restitution of every body"});
+  params.push_back({"rotation", 0.0, 0, 1, true, "1: let Box2D rotate bodies (chain never does)"});
+  return params;
+}
+
+Scene make_scene(std::string_view name, const std::vector<std::string>& sets) {
+  const SceneRecipe* recipe = find_recipe(name);
+  if (!recipe) {
+    throw InputError("unknown scene \"" + std::string(name) + "\" (chainbench list shows them)");
+  }
+  const std::vector<SceneParam> params = all_params(*recipe);
+  SceneParams values;
+  for (const SceneParam& p : params)
+    values.set(p.key, p.value);
+  for (const std::string& kv : sets) {
+    const std::size_t eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("--set \"" + kv + "\": expected KEY=VALUE");
+    const std::string key = kv.substr(0, eq);
+    const auto p = std::find_if(params.begin(), params.end(),
+                                [&](const SceneParam& q) { return q.key == key; });
+    if (p == params.end()) {
+      std::string keys;
+      for (const SceneParam& q : params)
+        keys += (keys.empty() ? "" : ", ") + q.key;
+      throw InputError("--set " + key + ": scene " + recipe->name + " has no parameter \"" + key +
+                       "\" (it has: " + keys + ")");
+    }
+    const double v = parse_number("--set " + key, kv.substr(eq + 1));
+    if (p->integer && v != std::floor(v))
+      throw InputError("--set " + key + ": must be a whole number, got " + kv.substr(eq + 1));
+    if (v < p->min || v > p->max) {
+      throw InputError("--set " + key + ": " + num(v) + " is out of range [" + num(p->min) + ", " +
+                       num(p->max) + "] for scene " + recipe->name);
+    }
+    values.set(key, v);
+  }
+  if (const std::size_t n = recipe->body_count(values); n > limits::kMaxBodies) {
+    throw InputError("scene " + recipe->name + " with these parameters would hold " +
+                     std::to_string(n) + " bodies, more than the limit of " +
+                     std::to_string(limits::kMaxBodies));
+  }
+  Scene scene = recipe->build(values);
+  scene.steps = values.count("steps");
+  scene.dt = values.get("dt");
+  scene.friction = values.get("friction");
+  scene.restitution = values.get("restitution");
+  scene.rotation = values.count("rotation") != 0;
+  return scene;
+}
+
+namespace build {
+
+void ground(Scene& s, double half_width, double top, double x, const std::string& name) {
+  box(s, name, BodyKind::kStatic, {x, top - 1.0}, {half_width, 1.0});
+}
+
+std::size_t box(Scene& s, std::string name, BodyKind kind, Vec2d center, Vec2d half, double mass) {
+  SceneBody b;
+  b.name = std::move(name);
+  b.kind = kind;
+  b.center = center;
+  b.half_extents = half;
+  b.mass = kind == BodyKind::kDynamic ? mass : 0.0;
+  s.bodies.push_back(std::move(b));
+  return s.bodies.size() - 1;
+}
+
+std::string label(std::string_view prefix, int a) {
+  std::string s(prefix);
+  s.append(std::to_string(a));
+  return s;
+}
+
+std::string label(std::string_view prefix, int a, int b) {
+  std::string s = label(prefix, a);
+  s.push_back('_');
+  s.append(std::to_string(b));
+  return s;
+}
+
+}  // namespace build
+}  // namespace chainbench

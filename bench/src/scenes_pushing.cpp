@@ -1,0 +1,101 @@
+// Pushing scenes: a driven body shoving others, top-down and side-on, and a squeeze.
+#include "scene_library.h"
+
+#include <algorithm>
+
+namespace chainbench {
+namespace {
+
+using build::box;
+using build::ground;
+
+// Top-down (no gravity): a pusher at x = 0 driven along +x into n touching unit boxes.
+Scene push_row_common(const SceneParams& p, const char* name) {
+  Scene s;
+  s.name = name;
+  s.gravity = {0.0, 0.0};
+  const std::size_t pusher =
+      box(s, "pusher", BodyKind::kDynamic, {0.0, 0.0}, {0.5, 0.5}, p.get("pusher_mass"));
+  for (int i = 1; i <= p.count("n"); ++i)
+    box(s, build::label("box", i), BodyKind::kDynamic, {1.0 * i, 0.0}, {0.5, 0.5});
+  s.drivers.push_back({pusher, {p.get("speed"), 0.0}, 0, limits::kMaxSteps});
+  return s;
+}
+
+Scene push_row(const SceneParams& p) {
+  return push_row_common(p, "push_row");
+}
+
+Scene push_into_wall(const SceneParams& p) {
+  Scene s = push_row_common(p, "push_into_wall");
+  box(s, "wall", BodyKind::kStatic, {p.count("n") + 1.0, 0.0}, {0.5, 2.0});
+  return s;
+}
+
+// Side-on: a pusher as tall as a stack of unit boxes shoves it along the floor. The floor
+// contacts must not be resolved sideways (the chaining axis).
+Scene push_stack(const SceneParams& p) {
+  Scene s;
+  s.name = "push_stack";
+  ground(s, 30.0);
+  const int height = p.count("height");
+  const std::size_t pusher = box(s, "pusher", BodyKind::kDynamic, {0.0, 0.5 * height},
+                                 {0.5, 0.5 * height}, p.get("pusher_mass"));
+  for (int i = 0; i < height; ++i)
+    box(s, build::label("box", i), BodyKind::kDynamic, {1.0, 0.5 + i}, {0.5, 0.5});
+  s.drivers.push_back({pusher, {p.get("speed"), 0.0}, 0, limits::kMaxSteps});
+  return s;
+}
+
+// A unit box on the floor and a kinematic lift coming down on it.
+Scene squeeze(const SceneParams& p) {
+  Scene s;
+  s.name = "squeeze";
+  ground(s, 10.0);
+  box(s, "box", BodyKind::kDynamic, {0.0, 0.5}, {0.5, 0.5});
+  const std::size_t lift =
+      box(s, "lift", BodyKind::kKinematic, {0.0, 1.5 + p.get("gap")}, {1.5, 0.5});
+  s.bodies[lift].velocity = {0.0, -p.get("speed")};
+  return s;
+}
+
+std::size_t row_count(const SceneParams& p) {
+  return static_cast<std::size_t>(p.count("n")) + 1;
+}
+std::size_t row_and_wall_count(const SceneParams& p) {
+  return row_count(p) + 1;
+}
+
+}  // namespace
+
+std::vector<SceneRecipe> pushing_scenes() {
+  const std::vector<SceneParam> row = {
+      {"n", 10, 1, 1000000, true, "boxes in the row"},
+      {"speed", 2, 0, 1000, false, "pusher speed, m/s"},
+      {"pusher_mass", 1, 1e-6, 1e9, false, "kg (the boxes are 1 kg)"}};
+  return {
+      {"push_row", "pushing", "top-down: a driven pusher against a row of n touching boxes", row,
+       push_row, row_count, 120},
+      {"push_into_wall", "pushing", "push_row with a static wall after the row: nothing may move",
+       row, push_into_wall, row_and_wall_count, 120},
+      {"push_stack",
+       "pushing",
+       "side-on: a pusher shoving a stack along the floor (the chaining-axis case)",
+       {{"height", 2, 1, 1000, true, "boxes in the stack (and pusher height, m)"},
+        {"speed", 1, 0, 1000, false, "pusher speed, m/s"},
+        {"pusher_mass", 1, 1e-6, 1e9, false, "kg"}},
+       push_stack,
+       [](const SceneParams& p) { return static_cast<std::size_t>(p.count("height")) + 2; },
+       120},
+      {"squeeze",
+       "pushing",
+       "a box between the floor and a descending kinematic lift",
+       {{"speed", 0.5, 0, 1000, false, "lift speed, m/s"},
+        {"gap", 0.5, 0, 1000, false, "lift start above the box, m"}},
+       squeeze,
+       [](const SceneParams&) { return std::size_t{3}; },
+       180},
+  };
+}
+
+}  // namespace chainbench

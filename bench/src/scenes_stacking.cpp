@@ -1,0 +1,197 @@
+// Stacking scenes: boxes resting on boxes under gravity.
+#include "portable_random.h"
+#include "scene_library.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace chainbench {
+namespace {
+
+using build::box;
+using build::ground;
+
+std::size_t triangle(int base) {
+  return static_cast<std::size_t>(base) * static_cast<std::size_t>(base + 1) / 2;
+}
+
+Scene stack(const SceneParams& p) {
+  Scene s;
+  s.name = "stack";
+  const double h = 0.5 * p.get("size");
+  ground(s, std::max(10.0, 10.0 * h));
+  for (int i = 0; i < p.count("n"); ++i) {
+    box(s, build::label("box", i), BodyKind::kDynamic, {0.0, h + 2.0 * h * i}, {h, h}, 4.0 * h * h);
+  }
+  return s;
+}
+
+// Rows of touching boxes, each row centred on the one below (Box2D v3's large_pyramid layout).
+void add_pyramid(Scene& s, const std::string& prefix, int base, double size, double x0, double y0) {
+  const double h = 0.5 * size;
+  for (int row = 0; row < base; ++row) {
+    for (int k = 0; k < base - row; ++k) {
+      const double x = x0 + size * (k - 0.5 * (base - row - 1));
+      box(s, build::label(prefix, row, k), BodyKind::kDynamic, {x, y0 + h + size * row}, {h, h},
+          size * size);
+    }
+  }
+}
+
+Scene pyramid(const SceneParams& p) {
+  Scene s;
+  s.name = "pyramid";
+  const int base = p.count("base");
+  const double size = p.get("size");
+  ground(s, size * base + 2.0);
+  add_pyramid(s, "b", base, size, 0.0, 0.0);
+  return s;
+}
+
+Scene many_pyramids(const SceneParams& p) {
+  Scene s;
+  s.name = "many_pyramids";
+  const int rows = p.count("rows"), cols = p.count("cols"), base = p.count("base");
+  const double pitch = base + 2.0;  // room between neighbouring pyramids, and above each shelf
+  const double width = cols * pitch;
+  for (int r = 0; r < rows; ++r) {
+    const double top = r * (pitch + 1.0);
+    ground(s, 0.5 * width + 1.0, top, 0.0, build::label("shelf", r));
+    for (int c = 0; c < cols; ++c) {
+      add_pyramid(s, build::label("p", r, c) + "_", base, 1.0, -0.5 * width + pitch * (c + 0.5),
+                  top);
+    }
+  }
+  return s;
+}
+
+Scene mass_ratio_stack(const SceneParams& p) {
+  Scene s;
+  s.name = "mass_ratio_stack";
+  ground(s, 10.0);
+  const int n = p.count("n");
+  for (int i = 0; i < n; ++i) {
+    box(s, build::label("box", i), BodyKind::kDynamic, {0.0, 0.5 + i}, {0.5, 0.5},
+        i == n - 1 ? p.get("ratio") : 1.0);
+  }
+  return s;
+}
+
+Scene heavy_on_light(const SceneParams& p) {
+  Scene s;
+  s.name = "heavy_on_light";
+  const double size = p.get("size");
+  ground(s, size + 10.0);
+  const double x = 0.5 * size - 0.5;  // the light boxes sit under the heavy box's edges
+  box(s, "light_left", BodyKind::kDynamic, {-x, 0.5}, {0.5, 0.5}, 1.0);
+  box(s, "light_right", BodyKind::kDynamic, {x, 0.5}, {0.5, 0.5}, 1.0);
+  box(s, "heavy", BodyKind::kDynamic, {0.0, 1.0 + p.get("drop") + 0.5 * size},
+      {0.5 * size, 0.5 * size}, p.get("ratio"));
+  return s;
+}
+
+Scene overlap_recovery(const SceneParams& p) {
+  Scene s;
+  s.name = "overlap_recovery";
+  const int base = p.count("base");
+  const double pitch = 1.0 - p.get("overlap");  // centres closer than a box: every pair overlaps
+  ground(s, base + 10.0);
+  for (int row = 0; row < base; ++row) {
+    for (int k = 0; k < base - row; ++k) {
+      box(s, build::label("b", row, k), BodyKind::kDynamic,
+          {pitch * (k - 0.5 * (base - row - 1)), 0.5 + pitch * row}, {0.5, 0.5});
+    }
+  }
+  return s;
+}
+
+// Boxes of mixed sizes dropped in a grid into a container about as deep as it is wide.
+Scene random_pile(const SceneParams& p) {
+  Scene s;
+  s.name = "random_pile";
+  const int n = p.count("n");
+  PortableRandom rng(static_cast<std::uint64_t>(p.count("seed")) * 7919u + 17u);
+  const double pitch = 1.6;  // > the largest box: boxes start apart
+  const int cols = std::max(8, static_cast<int>(std::sqrt(static_cast<double>(n)) * 1.2));
+  const int rows = (n + cols - 1) / cols;
+  const double width = cols * pitch;
+  const double height = rows * pitch + 4.0;
+  ground(s, 0.5 * width + 1.0);
+  box(s, "wall_left", BodyKind::kStatic, {-0.5 * width - 0.5, 0.5 * height}, {0.5, 0.5 * height});
+  box(s, "wall_right", BodyKind::kStatic, {0.5 * width + 0.5, 0.5 * height}, {0.5, 0.5 * height});
+  for (int i = 0; i < n; ++i) {
+    const double h = rng.uniform(0.3, 0.7), w = rng.uniform(0.3, 0.7);
+    const double x = -0.5 * width + pitch * (i % cols + 0.5) + rng.uniform(-0.05, 0.05);
+    const double y = 1.0 + pitch * (i / cols + 0.5);
+    box(s, build::label("box", i), BodyKind::kDynamic, {x, y}, {w, h}, 4.0 * w * h);
+  }
+  return s;
+}
+
+}  // namespace
+
+std::vector<SceneRecipe> stacking_scenes() {
+  return {
+      {"stack",
+       "stacking",
+       "a vertical stack of n boxes on the ground",
+       {{"n", 15, 1, 2000, true, "boxes"}, {"size", 1.0, 0.01, 100.0, false, "box edge, m"}},
+       stack,
+       [](const SceneParams& p) { return static_cast<std::size_t>(p.count("n")) + 1; },
+       600},
+      {"pyramid",
+       "stacking",
+       "a pyramid of touching boxes; base=100 is Box2D v3's large_pyramid (5,050 boxes)",
+       {{"base", 20, 1, 2000, true, "boxes in the bottom row"},
+        {"size", 1.0, 0.01, 100.0, false, "box edge, m"}},
+       pyramid,
+       [](const SceneParams& p) { return triangle(p.count("base")) + 1; },
+       300},
+      {"many_pyramids",
+       "stacking",
+       "rows x cols pyramids, each row on its own shelf (20 x 20 x base 10 = 22,000 boxes)",
+       {{"rows", 20, 1, 200, true, "shelves"},
+        {"cols", 20, 1, 200, true, "pyramids per shelf"},
+        {"base", 10, 1, 100, true, "boxes in each bottom row"}},
+       many_pyramids,
+       [](const SceneParams& p) {
+         return static_cast<std::size_t>(p.count("rows")) *
+                (p.count("cols") * triangle(p.count("base")) + 1);
+       },
+       120},
+      {"mass_ratio_stack",
+       "stacking",
+       "n unit boxes, the top one ratio times heavier than the others",
+       {{"n", 5, 2, 1000, true, "boxes"},
+        {"ratio", 100, 1e-6, 1e6, false, "top mass / other mass"}},
+       mass_ratio_stack,
+       [](const SceneParams& p) { return static_cast<std::size_t>(p.count("n")) + 1; },
+       300},
+      {"heavy_on_light",
+       "stacking",
+       "a size-m box, ratio times heavier, dropped on two 1 m boxes",
+       {{"ratio", 400, 1, 1e6, false, "heavy mass / light mass"},
+        {"size", 20, 1, 1000, false, "heavy box edge, m"},
+        {"drop", 0.5, 0, 100, false, "gap it falls through, m"}},
+       heavy_on_light,
+       [](const SceneParams&) { return std::size_t{4}; },
+       300},
+      {"overlap_recovery",
+       "stacking",
+       "a pyramid created with each box overlapping its neighbours",
+       {{"base", 4, 1, 200, true, "boxes in the bottom row"},
+        {"overlap", 0.25, 0, 0.95, false, "fraction of a box"}},
+       overlap_recovery,
+       [](const SceneParams& p) { return triangle(p.count("base")) + 1; },
+       300},
+      {"random_pile",
+       "stacking",
+       "n boxes of mixed sizes dropped into a container",
+       {{"n", 1000, 1, 2000000, true, "boxes"}, {"seed", 1, 0, 2147483647, true, "layout seed"}},
+       random_pile,
+       [](const SceneParams& p) { return static_cast<std::size_t>(p.count("n")) + 3; },
+       300},
+  };
+}
+
+}  // namespace chainbench

@@ -1,0 +1,105 @@
+#include "box2d_world.h"
+
+#include <box2d/box2d.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace chainbench {
+namespace {
+
+b2BodyType to_box2d(BodyKind kind) {
+  switch (kind) {
+    case BodyKind::kStatic:
+      return b2_staticBody;
+    case BodyKind::kKinematic:
+      return b2_kinematicBody;
+    case BodyKind::kDynamic:
+      return b2_dynamicBody;
+  }
+  return b2_staticBody;
+}
+
+b2Vec2 vec(Vec2d v) {
+  return {static_cast<float>(v.x), static_cast<float>(v.y)};
+}
+
+}  // namespace
+
+double Box2dWorld::skin_shrink() {
+  return b2_polygonRadius - 0.5 * b2_linearSlop;
+}
+
+Box2dWorld::Box2dWorld(const Scene& scene, const Box2dSettings& settings)
+    : world_(std::make_unique<b2World>(vec(scene.gravity))),
+      drivers_(scene.drivers),
+      dt_(scene.dt),
+      settings_(settings) {
+  if (settings.velocity_iterations < 1 || settings.position_iterations < 0 ||
+      settings.substeps < 1) {
+    throw std::invalid_argument("Box2dWorld: iterations and substeps out of range");
+  }
+  world_->SetAllowSleeping(false);
+  world_->SetContinuousPhysics(false);
+  world_->SetWarmStarting(settings.warm_starting);
+  bodies_.reserve(scene.bodies.size());
+  for (const SceneBody& sb : scene.bodies) {
+    b2BodyDef def;
+    def.type = to_box2d(sb.kind);
+    def.position = vec(sb.center);
+    def.linearVelocity = sb.kind == BodyKind::kStatic ? b2Vec2(0.0f, 0.0f) : vec(sb.velocity);
+    def.fixedRotation = !scene.rotation;
+    def.allowSleep = false;
+    def.gravityScale = static_cast<float>(sb.gravity_scale);
+    b2Body* body = world_->CreateBody(&def);
+
+    // Compensation never takes a box below half its declared size (boxes under 1.5 cm).
+    const double shrink_x =
+        settings.compensate_skin ? std::min(skin_shrink(), 0.5 * sb.half_extents.x) : 0.0;
+    const double shrink_y =
+        settings.compensate_skin ? std::min(skin_shrink(), 0.5 * sb.half_extents.y) : 0.0;
+    b2PolygonShape box;
+    box.SetAsBox(static_cast<float>(sb.half_extents.x - shrink_x),
+                 static_cast<float>(sb.half_extents.y - shrink_y));
+    b2FixtureDef fixture;
+    fixture.shape = &box;
+    fixture.density = 0.0f;  // mass is set exactly below
+    fixture.friction = static_cast<float>(scene.friction_of(sb));
+    fixture.restitution = static_cast<float>(scene.restitution_of(sb));
+    body->CreateFixture(&fixture);
+    if (sb.kind == BodyKind::kDynamic) {
+      b2MassData mass;
+      mass.mass = static_cast<float>(sb.mass);
+      mass.center = b2Vec2(0.0f, 0.0f);
+      const double w = 2.0 * sb.half_extents.x, h = 2.0 * sb.half_extents.y;
+      mass.I = static_cast<float>(sb.mass * (w * w + h * h) / 12.0);
+      body->SetMassData(&mass);
+    }
+    bodies_.push_back(body);
+  }
+}
+
+Box2dWorld::~Box2dWorld() = default;
+
+void Box2dWorld::step(int step_index) {
+  const auto h = static_cast<float>(dt_ / settings_.substeps);
+  for (int k = 0; k < settings_.substeps; ++k) {
+    for (const Driver& d : drivers_) {
+      if (step_index >= d.from_step && step_index < d.to_step)
+        bodies_[d.body]->SetLinearVelocity(vec(d.velocity));
+    }
+    world_->Step(h, settings_.velocity_iterations, settings_.position_iterations);
+  }
+}
+
+void Box2dWorld::read_state(std::span<Vec2d> positions, std::span<Vec2d> velocities,
+                            std::span<double> angles) const {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const b2Body* b = bodies_[i];
+    if (!positions.empty()) positions[i] = {b->GetPosition().x, b->GetPosition().y};
+    if (!velocities.empty()) velocities[i] = {b->GetLinearVelocity().x, b->GetLinearVelocity().y};
+    if (!angles.empty()) angles[i] = b->GetAngle();
+  }
+}
+
+}  // namespace chainbench

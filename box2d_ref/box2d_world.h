@@ -1,0 +1,56 @@
+// The reference: a Box2D 2.4 world built from a Scene and stepped the way the scene says.
+//
+// Fixed rotation unless the scene asks for rotation; continuous collision and sleeping off so
+// every step does comparable work; each body's mass set exactly from the scene. Box2D pads
+// every polygon with a skin of b2_polygonRadius (1 cm) and lets contacts rest about
+// b2_linearSlop (5 mm) deep into it, so boxes built at their declared size rest about 1.5 cm
+// apart. With compensation (the default) each polygon is built kSkinShrink smaller per side
+// and boxes rest where their declared faces meet.
+#pragma once
+
+#include "scene.h"
+
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <vector>
+
+class b2World;
+class b2Body;
+
+namespace chainbench {
+
+struct Box2dSettings {
+  int velocity_iterations = 8;
+  int position_iterations = 3;
+  int substeps = 1;  // Box2D 2.4 has none of its own: each scene step is this many world steps
+  bool compensate_skin = true;
+  bool warm_starting = true;
+};
+
+class Box2dWorld {
+ public:
+  // b2_polygonRadius - b2_linearSlop / 2: what compensation takes off each side (7.5 mm).
+  static double skin_shrink();
+
+  Box2dWorld(const Scene& scene, const Box2dSettings& settings);
+  ~Box2dWorld();
+  Box2dWorld(const Box2dWorld&) = delete;
+  Box2dWorld& operator=(const Box2dWorld&) = delete;
+
+  // Applies the drivers active at scene step `step_index`, then advances by the scene's dt.
+  void step(int step_index);
+  // Centres, velocities and angles in scene order; an empty span is skipped.
+  void read_state(std::span<Vec2d> positions, std::span<Vec2d> velocities,
+                  std::span<double> angles) const;
+  std::size_t body_count() const { return bodies_.size(); }
+
+ private:
+  std::unique_ptr<b2World> world_;
+  std::vector<b2Body*> bodies_;
+  std::vector<Driver> drivers_;
+  double dt_;
+  Box2dSettings settings_;
+};
+
+}  // namespace chainbench

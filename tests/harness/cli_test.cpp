@@ -1,0 +1,154 @@
+// The chainbench command end to end: exit statuses, messages, and the JSON of `run`.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+namespace {
+
+struct Result {
+  int status;
+  std::string out;  // stdout and stderr
+};
+
+Result chainbench(const std::string& args) {
+  const std::string cmd = std::string(CHAINBENCH_EXE) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return {-1, "popen failed"};
+  Result r{0, {}};
+  std::array<char, 4096> buf;
+  while (std::fgets(buf.data(), buf.size(), pipe))
+    r.out += buf.data();
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+std::string temp(const std::string& name) {
+  return ::testing::TempDir() + "chainbench_cli_" + name;
+}
+
+TEST(Cli, RunWritesTheDesignJsonAndNothingMovesAgainstAWall) {
+  const std::string json_path = temp("wall.json");
+  const Result r =
+      chainbench("run --scene push_into_wall --set n=4 --set steps=60 --json " + json_path);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("ms/step"), std::string::npos);
+  nlohmann::json j;
+  std::ifstream(json_path) >> j;
+  EXPECT_EQ(j["schema"], "chainbench.run/1");
+  EXPECT_EQ(j["scene"]["name"], "push_into_wall");
+  EXPECT_EQ(j["scene"]["bodies"], 6);
+  EXPECT_EQ(j["scene"]["steps"], 60);
+  ASSERT_EQ(j["runs"].size(), 3u);  // chain, chain seed2014, box2d (the reference, among them)
+  const double start[] = {0, 1, 2, 3, 4, 5};
+  for (const auto& run : j["runs"]) {
+    SCOPED_TRACE(run["engine"].get<std::string>());
+    for (const char* key : {"engine", "final_positions", "ms_per_step", "metrics"})
+      EXPECT_TRUE(run.contains(key)) << key;
+    for (const char* key : {"median", "mean", "p95"})
+      EXPECT_TRUE(run["ms_per_step"].contains(key)) << key;
+    for (const char* key : {"energy_free_displacement", "max_penetration", "peak_speed", "finite",
+                            "stable", "hash"}) {
+      EXPECT_TRUE(run["metrics"].contains(key)) << key;
+    }
+    EXPECT_EQ(run["metrics"]["hash"].get<std::string>().size(), 16u);
+    EXPECT_TRUE(run["metrics"]["stable"].get<bool>());
+    const bool is_chain = run["engine"].get<std::string>().rfind("chain", 0) == 0;
+    EXPECT_EQ(run.contains("chain_stats"), is_chain);
+    // Chain holds the row exactly; Box2D gives way by its contact softness, a few mm per contact.
+    const double tolerance = is_chain ? 1e-9 : 0.03;
+    ASSERT_EQ(run["final_positions"].size(), 6u);
+    for (int i = 0; i < 5; ++i) {
+      EXPECT_NEAR(run["final_positions"][i][0].get<double>(), start[i], tolerance) << "body " << i;
+      EXPECT_NEAR(run["final_positions"][i][1].get<double>(), 0.0, tolerance) << "body " << i;
+    }
+  }
+  ASSERT_EQ(j["comparison"].size(), 2u);
+  EXPECT_EQ(j["comparison"][0]["reference"],
+            "box2d:vel_iters=8,pos_iters=3,substeps=1,skin=compensate,warm=1");
+  EXPECT_LT(j["comparison"][0]["final_position_error"]["max"].get<double>(), 0.03);
+}
+
+TEST(Cli, CsvAndTraceAreWritten) {
+  const Result r =
+      chainbench("run --scene squeeze --set steps=10 --engines chain --reference none --csv " +
+                 temp("s.csv") + " --trace " + temp("s.trace.csv"));
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream csv(temp("s.csv")), trace(temp("s.trace.csv"));
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  EXPECT_EQ(header.rfind("scene,engine,bodies,steps", 0), 0u);
+  EXPECT_EQ(row.rfind("squeeze,\"chain:variant=modern", 0), 0u) << row;
+  int lines = 0;
+  for (std::string l; std::getline(trace, l);)
+    ++lines;
+  EXPECT_EQ(lines, 1 + 10 * 3);
+}
+
+struct BadCall {
+  const char* args;
+  const char* message;
+};
+void PrintTo(const BadCall& c, std::ostream* os) {
+  *os << c.args;
+}
+
+class RefusedCall : public ::testing::TestWithParam<BadCall> {};
+
+INSTANTIATE_TEST_SUITE_P(
+    Cli, RefusedCall,
+    ::testing::Values(BadCall{"run", "give --scene NAME or --scene-file FILE"},
+                      BadCall{"run --scene nope", "unknown scene \"nope\""},
+                      BadCall{"run --scene stack --set n=1e12", "out of range"},
+                      BadCall{"run --scene stack --set colour=3", "no parameter \"colour\""},
+                      BadCall{"run --scene stack --engines chain:speed=2", "unknown key \"speed\""},
+                      BadCall{"run --scene stack --engines havok", "unknown engine \"havok\""},
+                      BadCall{"run --scene stack --steps 0", "--steps"},
+                      BadCall{"run --scene stack --metrics speed", "unknown metric"},
+                      BadCall{"run --scene stack --scene-file x.json", "excludes"},
+                      BadCall{"run --scene-file /nonexistent.json",
+                              "/nonexistent.json: cannot open"},
+                      BadCall{"run --scene stack --json /nonexistent/dir/out.json", "cannot write"},
+                      BadCall{"frobnicate", "subcommand"}),
+    [](const auto& info) { return "Case" + std::to_string(info.index); });
+
+TEST_P(RefusedCall, ExitsWithStatusTwoAndSaysWhy) {
+  const Result r = chainbench(GetParam().args);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find(GetParam().message), std::string::npos) << r.out;
+}
+
+TEST(Cli, BadSceneFileNamesFileAndPath) {
+  const std::string path = temp("bad.json");
+  std::ofstream(path)
+      << R"({"bodies": [{"type": "dynamic", "center": [0, 0], "half_extents": [0.5, -1], "mass": 1}]})";
+  const Result r = chainbench("run --scene-file " + path);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find(path + ": bodies[0].half_extents[1]: must be > 0"), std::string::npos)
+      << r.out;
+}
+
+TEST(Cli, ListAndEnginesDescribeWhatCanRun) {
+  const Result list = chainbench("list");
+  EXPECT_EQ(list.status, 0);
+  for (const char* scene :
+       {"stack", "pyramid", "many_pyramids", "mass_ratio_stack", "heavy_on_light",
+        "overlap_recovery", "push_row", "push_into_wall", "push_stack", "squeeze", "seed_stack",
+        "seed_squeeze", "seed_falling_row"}) {
+    EXPECT_NE(list.out.find(std::string("  ") + scene + ": "), std::string::npos) << scene;
+  }
+  const Result engines = chainbench("engines");
+  EXPECT_EQ(engines.status, 0);
+  EXPECT_NE(engines.out.find("chain:variant=modern,velocity=inelastic"), std::string::npos)
+      << engines.out;
+  EXPECT_NE(engines.out.find("vel_iters"), std::string::npos);
+  EXPECT_EQ(chainbench("--help").status, 0);
+}
+
+}  // namespace

@@ -8,6 +8,10 @@
 #include <cstdlib>
 #include <new>
 
+// The replacements below pair malloc with free. GCC inlines them into library code that calls
+// operator new/delete and then sees new released by free, which would be a mismatch anywhere else.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
 namespace {
 std::atomic<bool> g_counting{false};
 std::atomic<long> g_allocations{0};

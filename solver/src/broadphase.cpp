@@ -2,13 +2,17 @@
 
 #include <bit>
 #include <limits>
+#include <numeric>
+#include <utility>
 
 namespace chain::detail {
 namespace {
 
 constexpr double kMinCell = 1.0e-6;
-constexpr double kMaxCell = 1.0e9;
 constexpr std::uint32_t kMaxCellsPerAxis = 1u << 30;
+constexpr std::size_t kMaxLevels = 8;
+// A level holds sizes up to this many times its median: cells stay within a few bodies.
+constexpr double kLevelSpread = 2.0;
 
 double largest_half(const Bodies& b, std::uint32_t i) {
   return std::max(b.hx[i], b.hy[i]);
@@ -23,90 +27,117 @@ std::uint32_t cells_spanned(double lo, double hi, double inv_cell) {
 }  // namespace
 
 void Broadphase::configure(const Bodies& bodies) {
+  ++generation_;
   const std::uint32_t n = bodies.size();
-  // Size cells for the movable bodies: they are the ones that meet each other every step.
-  std::vector<double> halves;
-  const std::uint32_t sized = bodies.movable_end > 0 ? bodies.movable_end : n;
-  halves.reserve(sized);
-  for (std::uint32_t i = 0; i < sized; ++i)
-    halves.push_back(largest_half(bodies, i));
-  double p90 = 0.5;
-  if (!halves.empty()) {
-    const auto k = static_cast<std::ptrdiff_t>((halves.size() - 1) * 9 / 10);
-    std::nth_element(halves.begin(), halves.begin() + k, halves.end());
-    p90 = halves[static_cast<std::size_t>(k)];
-  }
-  cell_ = std::clamp(2.0 * p90, kMinCell, kMaxCell);
-  inv_cell_ = 1.0 / cell_;
-
-  grid_bodies_.clear();
-  large_.clear();
-  small_half_ = 0.0;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (largest_half(bodies, i) <= 0.5 * cell_) {
-      grid_bodies_.push_back(i);
-      small_half_ = std::max(small_half_, largest_half(bodies, i));
-    } else {
-      large_.push_back(i);
-    }
-  }
-  const std::uint32_t table = std::bit_ceil(
-      std::max<std::uint32_t>(64u, 2u * static_cast<std::uint32_t>(grid_bodies_.size())));
-  mask_ = table - 1;
-  cell_start_.assign(table + 1, 0);
-  cursor_.assign(table, 0);
-  keys_.resize(grid_bodies_.size());
-  key_x_.resize(grid_bodies_.size());
-  key_y_.resize(grid_bodies_.size());
-  entries_.resize(grid_bodies_.size());
+  level_of_.assign(n, 0);
+  entry_of_.assign(n, 0);
   build_x_.resize(n);
   build_y_.resize(n);
+  levels_.clear();
+
+  std::vector<std::uint32_t> by_size(n);
+  std::iota(by_size.begin(), by_size.end(), 0u);
+  std::sort(by_size.begin(), by_size.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return std::pair(largest_half(bodies, a), a) < std::pair(largest_half(bodies, b), b);
+  });
+  std::vector<double> movable;
+  std::size_t start = 0;
+  while (start < n) {
+    // The median size of the movable bodies left (of all left, if none moves) sets the level.
+    movable.clear();
+    for (std::size_t k = start; k < n; ++k) {
+      if (!bodies.immovable(by_size[k])) movable.push_back(largest_half(bodies, by_size[k]));
+    }
+    const double median = movable.empty() ? largest_half(bodies, by_size[start + (n - start) / 2])
+                                          : movable[movable.size() / 2];
+    std::size_t end = start;
+    while (end < n && largest_half(bodies, by_size[end]) <= kLevelSpread * median)
+      ++end;
+    if (levels_.size() + 1 == kMaxLevels) end = n;
+    Level& level = levels_.emplace_back();
+    level.bodies.assign(by_size.begin() + static_cast<std::ptrdiff_t>(start),
+                        by_size.begin() + static_cast<std::ptrdiff_t>(end));
+    std::sort(level.bodies.begin(), level.bodies.end());
+    level.small_half = largest_half(bodies, by_size[end - 1]);
+    for (const std::uint32_t i : level.bodies)
+      level_of_[i] = static_cast<std::uint8_t>(levels_.size() - 1);
+    start = end;
+  }
+  slack_ = levels_.empty() ? 0.0 : 0.25 * levels_.front().small_half;
+  for (Level& level : levels_) {
+    level.cell = std::max(2.0 * level.small_half + slack_, kMinCell);
+    level.inv_cell = 1.0 / level.cell;
+    const std::uint32_t count = static_cast<std::uint32_t>(level.bodies.size());
+    const std::uint32_t table = std::bit_ceil(std::max<std::uint32_t>(64u, 2u * count));
+    level.mask = table - 1;
+    level.cell_start.assign(table + 1, 0);
+    level.cursor.assign(table, 0);
+    level.keys.resize(count);
+    level.key_x.resize(count);
+    level.key_y.resize(count);
+    level.entries.resize(count);
+  }
 }
 
 void Broadphase::build(const Bodies& bodies) {
   margin_ = 0.0;
   std::copy(bodies.x.begin(), bodies.x.end(), build_x_.begin());
   std::copy(bodies.y.begin(), bodies.y.end(), build_y_.begin());
-  if (grid_bodies_.empty()) {
-    width_ = height_ = 1;
-    return;
-  }
+  for (Level& level : levels_)
+    level.build(bodies, entry_of_);
+}
 
+bool Broadphase::refresh(const Bodies& bodies) {
+  double moved = 0.0;
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    moved = std::max(
+        moved, std::max(std::abs(bodies.x[i] - build_x_[i]), std::abs(bodies.y[i] - build_y_[i])));
+  }
+  if (!(4.0 * moved < slack_)) return false;
+  margin_ = moved;
+  for (Level& level : levels_) {
+    for (Entry& e : level.entries) {
+      e.x = bodies.x[e.body];
+      e.y = bodies.y[e.body];
+    }
+  }
+  return true;
+}
+
+void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry_of) {
   double min_x = std::numeric_limits<double>::max(), min_y = min_x;
   double max_x = std::numeric_limits<double>::lowest(), max_y = max_x;
-  for (const std::uint32_t i : grid_bodies_) {
-    min_x = std::min(min_x, bodies.x[i]);
-    max_x = std::max(max_x, bodies.x[i]);
-    min_y = std::min(min_y, bodies.y[i]);
-    max_y = std::max(max_y, bodies.y[i]);
+  for (const std::uint32_t i : bodies) {
+    min_x = std::min(min_x, b.x[i]);
+    max_x = std::max(max_x, b.x[i]);
+    min_y = std::min(min_y, b.y[i]);
+    max_y = std::max(max_y, b.y[i]);
   }
-  origin_x_ = min_x;
-  origin_y_ = min_y;
-  width_ = cells_spanned(min_x, max_x, inv_cell_);
-  height_ = cells_spanned(min_y, max_y, inv_cell_);
+  // Half a cell below the lowest centre: scenes built on a lattice (stacks, rows) then have
+  // their centres mid-cell, and a query around a box spans 3 cells a side, not 4.
+  origin_x = min_x - 0.5 * cell;
+  origin_y = min_y - 0.5 * cell;
+  width = cells_spanned(origin_x, max_x, inv_cell);
+  height = cells_spanned(origin_y, max_y, inv_cell);
+  dense = static_cast<std::uint64_t>(width) * height <= static_cast<std::uint64_t>(mask) + 1;
 
-  // Counting sort of the grid bodies by bucket; stable, so solve order holds within a bucket.
-  std::fill(cell_start_.begin(), cell_start_.end(), 0u);
-  for (std::size_t k = 0; k < grid_bodies_.size(); ++k) {
-    const std::uint32_t i = grid_bodies_[k];
-    key_x_[k] = cell_x(bodies.x[i]);
-    key_y_[k] = cell_y(bodies.y[i]);
-    keys_[k] = bucket(key_x_[k], key_y_[k]);
-    ++cell_start_[keys_[k] + 1];
+  // Counting sort by bucket; stable, so solve order holds within a bucket.
+  std::fill(cell_start.begin(), cell_start.end(), 0u);
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    const std::uint32_t i = bodies[k];
+    key_x[k] = cell_x(b.x[i]);
+    key_y[k] = cell_y(b.y[i]);
+    keys[k] = bucket(key_x[k], key_y[k]);
+    ++cell_start[keys[k] + 1];
   }
-  for (std::size_t b = 1; b < cell_start_.size(); ++b)
-    cell_start_[b] += cell_start_[b - 1];
-  std::copy(cell_start_.begin(), cell_start_.end() - 1, cursor_.begin());
-  for (std::size_t k = 0; k < grid_bodies_.size(); ++k) {
-    const std::uint32_t i = grid_bodies_[k];
-    entries_[cursor_[keys_[k]]++] = Entry{i,
-                                          key_x_[k],
-                                          key_y_[k],
-                                          bodies.immovable(i) ? 1u : 0u,
-                                          bodies.x[i] - bodies.hx[i],
-                                          bodies.y[i] - bodies.hy[i],
-                                          bodies.x[i] + bodies.hx[i],
-                                          bodies.y[i] + bodies.hy[i]};
+  for (std::size_t k = 1; k < cell_start.size(); ++k)
+    cell_start[k] += cell_start[k - 1];
+  std::copy(cell_start.begin(), cell_start.end() - 1, cursor.begin());
+  for (std::size_t k = 0; k < bodies.size(); ++k) {
+    const std::uint32_t i = bodies[k];
+    entry_of[i] = cursor[keys[k]]++;
+    entries[entry_of[i]] =
+        Entry{i, key_x[k], key_y[k], b.immovable(i) ? 1u : 0u, b.x[i], b.y[i], b.hx[i], b.hy[i]};
   }
 }
 

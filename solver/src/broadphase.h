@@ -1,14 +1,18 @@
-// Broadphase: a uniform grid over body centres, rebuilt by a counting sort at every sweep.
+// Broadphase: uniform grids over body centres, one per size class, rebuilt by a counting sort at
+// every sweep.
 //
-// Cells are twice the 90th-percentile half extent of the movable bodies, so a body that fits a
-// cell meets only bodies in the 3x3 cells around its own. Bodies too big for a cell (ground,
-// walls, a giant box) are kept in a short list that every query includes. Cells are numbered
-// row by row over the bounding box of the centres: when that box has fewer cells than the table
-// has buckets, bucket = cell (no collisions) and a 3-cell row of a query is one contiguous run of
-// entries; otherwise rows wrap around the table like a hash, and entries are filtered by cell.
+// Bodies are split into levels by size: a level takes every remaining body up to 4 times the
+// median size of the remaining movable bodies, and its cells are 2 * (its largest half extent)
+// + slack wide, so a body meets only bodies in the 3x3 cells around its own, even slack apart.
+// A pyramid is one level of boxes and one of a single ground box; a pile of mixed sizes is one
+// level; a scene of pebbles and boulders is two. Cells are numbered row by row over the bounding
+// box of a level's centres: when that box has no more cells than the table has buckets, bucket =
+// cell and a 3-cell row of a query is one contiguous run of entries; otherwise rows wrap around
+// the table like a hash, and entries are filtered by cell.
 //
-// Bodies pushed after build() stay where they were bucketed; note_move() widens later queries by
-// the largest such displacement, so a pair created by a push is never missed.
+// A body pushed after build() stays in the bucket it was built into, but its entry follows it:
+// note_move() updates the entry and widens later queries by the largest displacement so far,
+// so a pair created by a push is never missed.
 #pragma once
 
 #include "bodies.h"
@@ -22,85 +26,108 @@ namespace chain::detail {
 
 class Broadphase {
  public:
-  // Chooses cells and the list of oversized bodies; call whenever the body set changes.
+  // Chooses levels and cells; call whenever the body set changes.
   void configure(const Bodies& bodies);
   // Buckets every body at its current position.
   void build(const Bodies& bodies);
+  // Brings every entry up to date after moves the broadphase was not told of (integration).
+  // True while no body has moved a quarter of the slack since build(): pairs closer than
+  // slack - 2 * moved() apart were all near pairs then, and the grid needs no rebuild.
+  bool refresh(const Bodies& bodies);
+  // Changes whenever configure() runs (the body set changed).
+  std::uint64_t generation() const { return generation_; }
   void note_move(std::uint32_t body, double x, double y) {
     margin_ =
         std::max(margin_, std::max(std::abs(x - build_x_[body]), std::abs(y - build_y_[body])));
+    Entry& e = levels_[level_of_[body]].entries[entry_of_[body]];
+    e.x = x;
+    e.y = y;
   }
+  // Pairs closer than this are near pairs.
+  double slack() const { return slack_; }
+  // The largest displacement of any body since build() (as of the last refresh or move).
+  double moved() const { return margin_; }
 
-  // fn(i, j) with i < j, once for every pair whose boxes overlap by more than `tolerance` on
-  // both axes at build time, except pairs of two immovable bodies. Call right after build().
+  // fn(i, j, overlapping) with i < j, once for every pair whose boxes are less than slack() apart
+  // on both axes at build time, except pairs of two immovable bodies; `overlapping` when they
+  // overlap by more than `tolerance` on both. Order depends only on positions and solve order.
+  // Call right after build().
   template <class Fn>
-  void for_each_overlapping_pair(const Bodies& bodies, double tolerance, Fn&& fn) const;
+  void for_each_near_pair(double tolerance, Fn&& fn) const;
 
-  // fn(j) once for every body that may overlap the box at current positions (a superset: the
-  // caller tests). Order depends only on positions and solve order.
+  // fn(j) once for every body j != body whose box now overlaps body's box by more than
+  // `tolerance` on both axes. Order depends only on positions and solve order.
   template <class Fn>
-  void for_each_candidate(double min_x, double min_y, double max_x, double max_y, Fn&& fn) const;
+  void for_each_overlap(const Bodies& bodies, std::uint32_t body, double tolerance, Fn&& fn) const;
 
   // fn(j) for the bodies near `body` as the grid saw them at build time, ignoring every move
   // since: the 2014 engine's grid, built once per frame and never updated.
   template <class Fn>
   void for_each_stale_candidate(const Bodies& bodies, std::uint32_t body, Fn&& fn) const;
 
-  double cell_size() const { return cell_; }
+  std::size_t level_count() const { return levels_.size(); }
 
  private:
-  struct Entry {
+  struct Entry {  // a body: the cell it was built into, and its current box
     std::uint32_t body;
     std::int32_t cx, cy;
     std::uint32_t immovable;
-    double min_x, min_y, max_x, max_y;
+    double x, y, hx, hy;
   };
   struct CellRange {
     std::int32_t x0, y0, x1, y1;
   };
-
-  // Queries covering more cells than this scan every entry instead.
+  // Queries covering more cells than this scan every entry of the level instead.
   static constexpr std::int64_t kMaxScanCells = 4096;
 
-  std::int32_t cell_x(double x) const { return clamp_cell((x - origin_x_) * inv_cell_, width_); }
-  std::int32_t cell_y(double y) const { return clamp_cell((y - origin_y_) * inv_cell_, height_); }
+  struct Level {
+    double cell = 1.0, inv_cell = 1.0;
+    double small_half = 0.0;  // largest half extent in the level
+    double origin_x = 0.0, origin_y = 0.0;
+    std::uint32_t width = 1, height = 1, mask = 63;
+    bool dense = true;                  // every cell has a bucket of its own
+    std::vector<std::uint32_t> bodies;  // slots, in solve order
+    std::vector<std::uint32_t> cell_start, cursor, keys;
+    std::vector<std::int32_t> key_x, key_y;
+    std::vector<Entry> entries;  // grouped by bucket, solve order within a bucket
+
+    std::int32_t cell_x(double x) const { return clamp_cell((x - origin_x) * inv_cell, width); }
+    std::int32_t cell_y(double y) const { return clamp_cell((y - origin_y) * inv_cell, height); }
+    std::uint32_t bucket(std::int32_t cx, std::int32_t cy) const {
+      return (static_cast<std::uint32_t>(cy) * width + static_cast<std::uint32_t>(cx)) & mask;
+    }
+    // The cells whose bodies may reach the box (x +- hx, y +- hy) grown by pad.
+    CellRange cells_near(double x, double y, double hx, double hy, double pad) const {
+      const double rx = hx + small_half + pad, ry = hy + small_half + pad;
+      return {cell_x(x - rx), cell_y(y - ry), cell_x(x + rx), cell_y(y + ry)};
+    }
+    void build(const Bodies& bodies, std::vector<std::uint32_t>& entry_of);
+    template <class Fn>
+    void scan(CellRange r, Fn&& fn) const;
+  };
+
   static std::int32_t clamp_cell(double c, std::uint32_t count) {
     if (!(c >= 0.0)) return 0;
     if (c >= static_cast<double>(count - 1)) return static_cast<std::int32_t>(count - 1);
     return static_cast<std::int32_t>(c);
   }
-  std::uint32_t bucket(std::int32_t cx, std::int32_t cy) const {
-    return (static_cast<std::uint32_t>(cy) * width_ + static_cast<std::uint32_t>(cx)) & mask_;
+  static bool within(double x, double y, double hx, double hy, const Entry& e, double gap) {
+    return (hx + e.hx) - std::abs(x - e.x) > gap && (hy + e.hy) - std::abs(y - e.y) > gap;
   }
-  CellRange cells_of(double min_x, double min_y, double max_x, double max_y) const {
-    return {cell_x(min_x), cell_y(min_y), cell_x(max_x), cell_y(max_y)};
-  }
-  template <class Fn>
-  void scan(CellRange r, Fn&& fn) const;
 
-  double cell_ = 1.0;
-  double inv_cell_ = 1.0;
-  double small_half_ = 0.0;  // largest half extent of a gridded body
-  double margin_ = 0.0;      // largest displacement since build()
-  double origin_x_ = 0.0;
-  double origin_y_ = 0.0;
-  std::uint32_t width_ = 1;
-  std::uint32_t height_ = 1;
-  std::uint32_t mask_ = 63;
-  std::vector<std::uint32_t> grid_bodies_;  // slots kept in the grid, in solve order
-  std::vector<std::uint32_t> large_;        // slots too big for a cell, in solve order
-  std::vector<std::uint32_t> cell_start_;   // bucket -> first entry, size mask_ + 2
-  std::vector<std::uint32_t> cursor_;
-  std::vector<std::uint32_t> keys_;
-  std::vector<std::int32_t> key_x_, key_y_;
-  std::vector<Entry> entries_;  // grid bodies, grouped by bucket, solve order within a bucket
+  std::vector<Level> levels_;
+  std::vector<std::uint8_t> level_of_;   // per slot
+  std::vector<std::uint32_t> entry_of_;  // per slot: index in its level's entries
   std::vector<double> build_x_, build_y_;
+  double margin_ = 0.0;
+  double slack_ = 0.0;
+  std::uint64_t generation_ = 0;
 };
 
 template <class Fn>
-void Broadphase::scan(CellRange r, Fn&& fn) const {
+void Broadphase::Level::scan(CellRange r, Fn&& fn) const {
   if (static_cast<std::int64_t>(r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1) > kMaxScanCells) {
-    for (const Entry& e : entries_) {
+    for (const Entry& e : entries) {
       if (e.cx >= r.x0 && e.cx <= r.x1 && e.cy >= r.y0 && e.cy <= r.y1) fn(e);
     }
     return;
@@ -109,17 +136,24 @@ void Broadphase::scan(CellRange r, Fn&& fn) const {
     const std::uint32_t b0 = bucket(r.x0, cy);
     const std::uint32_t b1 = bucket(r.x1, cy);
     if (b1 >= b0 && b1 - b0 == static_cast<std::uint32_t>(r.x1 - r.x0)) {
-      // The row's buckets are contiguous: one run of entries.
-      for (std::uint32_t k = cell_start_[b0], end = cell_start_[b1 + 1]; k < end; ++k) {
-        const Entry& e = entries_[k];
-        if (e.cy == cy && e.cx >= r.x0 && e.cx <= r.x1) fn(e);
+      // The row's buckets are contiguous: one run of entries, which in a dense level holds
+      // exactly the cells asked for.
+      const std::uint32_t begin = cell_start[b0], end = cell_start[b1 + 1];
+      if (dense) {
+        for (std::uint32_t k = begin; k < end; ++k)
+          fn(entries[k]);
+      } else {
+        for (std::uint32_t k = begin; k < end; ++k) {
+          const Entry& e = entries[k];
+          if (e.cy == cy && e.cx >= r.x0 && e.cx <= r.x1) fn(e);
+        }
       }
       continue;
     }
     for (std::int32_t cx = r.x0; cx <= r.x1; ++cx) {
       const std::uint32_t b = bucket(cx, cy);
-      for (std::uint32_t k = cell_start_[b], end = cell_start_[b + 1]; k < end; ++k) {
-        const Entry& e = entries_[k];
+      for (std::uint32_t k = cell_start[b], end = cell_start[b + 1]; k < end; ++k) {
+        const Entry& e = entries[k];
         if (e.cx == cx && e.cy == cy) fn(e);
       }
     }
@@ -127,64 +161,62 @@ void Broadphase::scan(CellRange r, Fn&& fn) const {
 }
 
 template <class Fn>
-void Broadphase::for_each_overlapping_pair(const Bodies& bodies, double tolerance, Fn&& fn) const {
-  auto overlaps = [tolerance](double ax0, double ay0, double ax1, double ay1, const Entry& f) {
-    return std::min(ax1, f.max_x) - std::max(ax0, f.min_x) > tolerance &&
-           std::min(ay1, f.max_y) - std::max(ay0, f.min_y) > tolerance;
+void Broadphase::for_each_near_pair(double tolerance, Fn&& fn) const {
+  const double gap = -slack_;
+  auto test = [&](const Entry& e, const Entry& f) {
+    if ((e.immovable & f.immovable) || !within(e.x, e.y, e.hx, e.hy, f, gap)) return;
+    fn(std::min(e.body, f.body), std::max(e.body, f.body),
+       within(e.x, e.y, e.hx, e.hy, f, tolerance));
   };
-  const auto last_x = static_cast<std::int32_t>(width_ - 1);
-  const auto last_y = static_cast<std::int32_t>(height_ - 1);
-  for (const Entry& e : entries_) {
-    const CellRange r{std::max(e.cx - 1, 0), std::max(e.cy - 1, 0), std::min(e.cx + 1, last_x),
-                      std::min(e.cy + 1, last_y)};
-    scan(r, [&](const Entry& f) {
-      if (f.body <= e.body || (e.immovable & f.immovable)) return;
-      if (overlaps(e.min_x, e.min_y, e.max_x, e.max_y, f)) fn(e.body, f.body);
-    });
-  }
-  for (std::size_t k = 0; k < large_.size(); ++k) {
-    const std::uint32_t l = large_[k];
-    const bool l_immovable = bodies.immovable(l);
-    const double x0 = bodies.x[l] - bodies.hx[l], x1 = bodies.x[l] + bodies.hx[l];
-    const double y0 = bodies.y[l] - bodies.hy[l], y1 = bodies.y[l] + bodies.hy[l];
-    scan(cells_of(x0 - small_half_, y0 - small_half_, x1 + small_half_, y1 + small_half_),
-         [&](const Entry& f) {
-           if (l_immovable && f.immovable) return;
-           if (overlaps(x0, y0, x1, y1, f)) fn(std::min(l, f.body), std::max(l, f.body));
-         });
-    for (std::size_t m = k + 1; m < large_.size(); ++m) {
-      const std::uint32_t o = large_[m];
-      if (l_immovable && bodies.immovable(o)) continue;
-      const Entry f{o,
-                    0,
-                    0,
-                    0,
-                    bodies.x[o] - bodies.hx[o],
-                    bodies.y[o] - bodies.hy[o],
-                    bodies.x[o] + bodies.hx[o],
-                    bodies.y[o] + bodies.hy[o]};
-      if (overlaps(x0, y0, x1, y1, f)) fn(std::min(l, o), std::max(l, o));
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    const Level& level = levels_[l];
+    const auto last_x = static_cast<std::int32_t>(level.width - 1);
+    const auto last_y = static_cast<std::int32_t>(level.height - 1);
+    // Within the level, half the neighbourhood: the own row (each pair once, by slot) and the
+    // row above; the row below finds e when it is that row's turn.
+    for (const Entry& e : level.entries) {
+      const CellRange r{std::max(e.cx - 1, 0), e.cy, std::min(e.cx + 1, last_x),
+                        std::min(e.cy + 1, last_y)};
+      level.scan(r, [&](const Entry& f) {
+        if (f.cy != e.cy || f.body > e.body) test(e, f);
+      });
+    }
+    // Against every coarser level, from whichever side has fewer bodies: a ground box scans the
+    // boxes around it once rather than every box scanning for the ground.
+    for (std::size_t m = l + 1; m < levels_.size(); ++m) {
+      const Level& coarse = levels_[m];
+      if (coarse.entries.size() < level.entries.size()) {
+        for (const Entry& c : coarse.entries) {
+          level.scan(level.cells_near(c.x, c.y, c.hx, c.hy, slack_),
+                     [&](const Entry& f) { test(c, f); });
+        }
+      } else {
+        for (const Entry& e : level.entries) {
+          coarse.scan(coarse.cells_near(e.x, e.y, e.hx, e.hy, slack_),
+                      [&](const Entry& f) { test(e, f); });
+        }
+      }
     }
   }
 }
 
 template <class Fn>
-void Broadphase::for_each_candidate(double min_x, double min_y, double max_x, double max_y,
-                                    Fn&& fn) const {
-  const double pad = small_half_ + margin_;
-  scan(cells_of(min_x - pad, min_y - pad, max_x + pad, max_y + pad),
-       [&](const Entry& e) { fn(e.body); });
-  for (const std::uint32_t l : large_)
-    fn(l);
+void Broadphase::for_each_overlap(const Bodies& bodies, std::uint32_t body, double tolerance,
+                                  Fn&& fn) const {
+  const double x = bodies.x[body], y = bodies.y[body], hx = bodies.hx[body], hy = bodies.hy[body];
+  for (const Level& level : levels_) {
+    level.scan(level.cells_near(x, y, hx, hy, margin_), [&](const Entry& e) {
+      if (e.body != body && within(x, y, hx, hy, e, tolerance)) fn(e.body);
+    });
+  }
 }
 
 template <class Fn>
 void Broadphase::for_each_stale_candidate(const Bodies& bodies, std::uint32_t body, Fn&& fn) const {
-  const double hx = bodies.hx[body] + small_half_, hy = bodies.hy[body] + small_half_;
-  const double x = build_x_[body], y = build_y_[body];
-  scan(cells_of(x - hx, y - hy, x + hx, y + hy), [&](const Entry& e) { fn(e.body); });
-  for (const std::uint32_t l : large_)
-    fn(l);
+  const double x = build_x_[body], y = build_y_[body], hx = bodies.hx[body], hy = bodies.hy[body];
+  for (const Level& level : levels_) {
+    level.scan(level.cells_near(x, y, hx, hy, 0.0), [&](const Entry& e) { fn(e.body); });
+  }
 }
 
 }  // namespace chain::detail

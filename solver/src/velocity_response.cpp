@@ -20,9 +20,12 @@ void VelocityResponse::apply(Bodies& bodies, double restitution_threshold) {
 }
 
 void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_threshold) {
+  if (std::none_of(links_.begin(), links_.end(), [axis](const Link& l) { return l.axis == axis; }))
+    return;
   const std::uint32_t n = bodies.dynamic_end;
   double* v = axis == 0 ? bodies.vx.data() : bodies.vy.data();
   parent_.resize(n);
+  root_.resize(n);
   member_.assign(n, 0);
   for (auto* a : {&mass_, &momentum_, &anchor_sum_, &restitution_, &spread_})
     a->resize(n);
@@ -48,42 +51,49 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
   }
   if (!any) return;
 
+  // Sums run in slot order: the same bits for any creation order. A group's root is its smallest
+  // slot, so it comes first, and its sums are cleared before any member adds to them.
+  double max_restitution = 0.0;
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!member_[i]) continue;
-    const std::uint32_t r = find(i);
-    mass_[r] = momentum_[r] = anchor_sum_[r] = restitution_[r] = spread_[r] = 0.0;
-    anchor_count_[r] = 0;
-  }
-  // Sums run in slot order: the same bits for any creation order.
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (!member_[i]) continue;
-    const std::uint32_t r = find(i);
+    const std::uint32_t r = root_[i] = find(i);
+    if (r == i) {
+      mass_[r] = momentum_[r] = anchor_sum_[r] = restitution_[r] = spread_[r] = 0.0;
+      anchor_count_[r] = 0;
+    }
     mass_[r] += bodies.mass[i];
     momentum_[r] += bodies.mass[i] * v[i];
     restitution_[r] = std::max(restitution_[r], bodies.restitution[i]);
+    max_restitution = std::max(max_restitution, bodies.restitution[i]);
   }
   for (const Link& l : links_) {
     if (l.axis != axis || !bodies.immovable(l.b) || !closing(l)) continue;
-    const std::uint32_t r = find(l.a);
+    const std::uint32_t r = root_[l.a];
     anchor_sum_[r] += v[l.b];
     ++anchor_count_[r];
     restitution_[r] = std::max(restitution_[r], bodies.restitution[l.b]);
+    max_restitution = std::max(max_restitution, bodies.restitution[l.b]);
   }
   // momentum_ becomes the group velocity: the anchors' mean (several only when a body is
   // crushed between them) or the mass-weighted mean.
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (!member_[i] || find(i) != i) continue;
+    if (!member_[i] || root_[i] != i) continue;
     momentum_[i] = anchor_count_[i] > 0 ? anchor_sum_[i] / static_cast<double>(anchor_count_[i])
                                         : momentum_[i] / mass_[i];
   }
+  if (max_restitution == 0.0) {  // no group bounces: every member takes its group's velocity
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (member_[i]) v[i] = momentum_[root_[i]];
+    }
+    return;
+  }
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (!member_[i]) continue;
-    const std::uint32_t r = find(i);
-    spread_[r] = std::max(spread_[r], std::abs(v[i] - momentum_[r]));
+    if (member_[i])
+      spread_[root_[i]] = std::max(spread_[root_[i]], std::abs(v[i] - momentum_[root_[i]]));
   }
   for (std::uint32_t i = 0; i < n; ++i) {
     if (!member_[i]) continue;
-    const std::uint32_t r = find(i);
+    const std::uint32_t r = root_[i];
     const double group_v = momentum_[r];
     const double e = restitution_[r];
     v[i] =

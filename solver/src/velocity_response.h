@@ -35,7 +35,7 @@ class VelocityResponse {
   std::uint32_t find(std::uint32_t i);
 
   std::vector<Link> links_;
-  std::vector<std::uint32_t> parent_;
+  std::vector<std::uint32_t> parent_, root_;
   std::vector<std::uint8_t> member_;
   std::vector<double> mass_, momentum_, anchor_sum_, restitution_, spread_;
   std::vector<std::uint32_t> anchor_count_;

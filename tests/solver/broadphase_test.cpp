@@ -77,12 +77,14 @@ TEST_P(BroadphasePairs, MatchBruteForce) {
     Broadphase bp;
     bp.configure(b);
     bp.build(b);
-    Pairs found;
-    bp.for_each_overlapping_pair(b, 0.0, [&](std::uint32_t i, std::uint32_t j) {
+    Pairs near, overlapping;
+    bp.for_each_near_pair(0.0, [&](std::uint32_t i, std::uint32_t j, bool overlaps) {
       ASSERT_LT(i, j);
-      ASSERT_TRUE(found.insert({i, j}).second) << "pair reported twice";
+      ASSERT_TRUE(near.insert({i, j}).second) << "pair reported twice";
+      if (overlaps) overlapping.insert({i, j});
     });
-    EXPECT_EQ(found, brute_force(b, 0.0)) << "seed " << seed;
+    EXPECT_EQ(overlapping, brute_force(b, 0.0)) << "seed " << seed;
+    EXPECT_EQ(near, brute_force(b, -bp.slack())) << "seed " << seed;
   }
 }
 
@@ -98,18 +100,17 @@ TEST(Broadphase, QueryAfterAPushFindsBodiesNearTheNewPlace) {
   Broadphase bp;
   bp.configure(b);
   bp.build(b);
-  // Push body 0 (at x = 0) to x = 60.3, on top of the body at x = 60.
+  // Push body 0 (at x = 0) to x = 60.3, onto the body at x = 60.
   const std::uint32_t moved = slot_of_id[0];
   b.x[moved] = 60.3;
   bp.note_move(moved, b.x[moved], b.y[moved]);
-  bool found = false;
-  bp.for_each_candidate(b.x[moved] - 0.5, -0.5, b.x[moved] + 0.5, 0.5,
-                        [&](std::uint32_t j) { found |= j == slot_of_id[30]; });
-  EXPECT_TRUE(found);
-  // And the moved body is found by a query around its new place.
-  found = false;
-  bp.for_each_candidate(59.5, -0.5, 60.5, 0.5, [&](std::uint32_t j) { found |= j == moved; });
-  EXPECT_TRUE(found);
+  std::vector<std::uint32_t> found;
+  bp.for_each_overlap(b, moved, 0.0, [&](std::uint32_t j) { found.push_back(j); });
+  EXPECT_EQ(found, std::vector<std::uint32_t>{slot_of_id[30]});
+  // And a query from the body it now overlaps finds it at its new place.
+  found.clear();
+  bp.for_each_overlap(b, slot_of_id[30], 0.0, [&](std::uint32_t j) { found.push_back(j); });
+  EXPECT_EQ(found, std::vector<std::uint32_t>{moved});
 }
 
 }  // namespace

@@ -102,8 +102,11 @@ TEST(ChainWork, TenThousandBoxRowIntoAWallChainsFullyAndNothingMoves) {
   }
 }
 
-// 400 boxes created deep inside each other, in 15 columns (a box fits its column, so vertical
-// pushes can always separate them), settle within the budget to under 1 mm of overlap.
+// 400 boxes created deep inside each other, in 15 columns, each column's boxes as wide as each
+// other and no taller than wide: every pair overlaps more across than up, so push-out separates
+// them vertically. (Boxes whose centres nearly coincide across their widths get a sideways push
+// instead, and can jam a row wider than its room: RowWiderThanItsGapIsCrushedNotLooped.) They
+// settle within the budget to under 1 mm of overlap.
 TEST(ChainWork, DenseOverlappingPileStaysWithinBudgetAndSeparates) {
   World w(world_def(Variant::kModern, VelocityRule::kInelastic));
   std::vector<BodyId> ids = {w.create_body(static_box(0.0, -1.0, 30.0, 1.0)),
@@ -111,13 +114,17 @@ TEST(ChainWork, DenseOverlappingPileStaysWithinBudgetAndSeparates) {
                              w.create_body(static_box(11.0, 16.0, 1.0, 16.0))};
   std::vector<Vec2> half = {{30.0, 1.0}, {1.0, 16.0}, {1.0, 16.0}};
   std::mt19937 rng(7);
-  std::uniform_int_distribution<int> column(-7, 7);
-  std::uniform_real_distribution<double> y(0.5, 8.0), h(0.2, 0.6), jitter(-0.04, 0.04);
+  std::uniform_real_distribution<double> y(0.5, 8.0), unit(0.0, 1.0);
+  double column_half[15];
+  for (double& h : column_half)
+    h = 0.2 + 0.4 * unit(rng);
   for (int i = 0; i < 400; ++i) {
-    const double hh = h(rng);
-    ids.push_back(
-        w.create_body(dynamic_box(1.3 * column(rng) + jitter(rng), y(rng), hh, hh * hh * 4.0)));
-    half.push_back({hh, hh});
+    const int c = i % 15;
+    const double hx = column_half[c], hy = 0.2 + (hx - 0.2) * unit(rng);
+    BodyDef d = dynamic_box(1.3 * (c - 7), y(rng), hx, 4.0 * hx * hy);
+    d.half_extents = {hx, hy};
+    ids.push_back(w.create_body(d));
+    half.push_back({hx, hy});
   }
   const std::uint64_t budget =
       static_cast<std::uint64_t>(w.def().budget_per_body) * ids.size() + 1024;

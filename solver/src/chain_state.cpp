@@ -1,0 +1,83 @@
+#include "chain_state.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace chain::detail {
+
+void ChainState::begin_step(StepContext& ctx) {
+  const std::size_t n = ctx.bodies.size();
+  if (visited_.size() != n) {
+    // The body set changed: size every per-body buffer for it now, not in some later step.
+    visited_.assign(n, 0);
+    stamp_ = 0;
+    on_stack_.assign(n, 0);
+    support_anchor_.assign(n, kNoSlot);
+    near_start_.reserve(n + 2);
+    near_.reserve(8 * n);
+    ctx.crushes.reserve(std::min<std::size_t>(n, 1024));
+  }
+  if (++step_ == 0) {  // wrapped: forget every old mark
+    std::fill(crushed_.begin(), crushed_.end(), 0u);
+    step_ = 1;
+  }
+  crushed_.resize(n, 0);
+  leftover = false;
+}
+
+void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near_pairs) {
+  const std::uint32_t n = bodies.size();
+  support_[0].assign(n, 0);
+  support_[1].assign(n, 0);
+  if (!near_pairs) return;
+  near_start_.assign(n + 2, 0);
+  for (const Pair& p : *near_pairs)
+    ++near_start_[p.a + 2], ++near_start_[p.b + 2];
+  for (std::uint32_t i = 2; i < n + 2; ++i)
+    near_start_[i] += near_start_[i - 1];
+  near_.resize(near_start_[n + 1]);
+  for (const Pair& p : *near_pairs) {  // near_start_[i + 1] is the fill cursor of body i
+    near_[near_start_[p.a + 1]++] = p.b;
+    near_[near_start_[p.b + 1]++] = p.a;
+  }
+}
+
+void ChainState::begin_chain() {
+  if (++stamp_ == 0) {  // wrapped: forget every old mark
+    std::fill(visited_.begin(), visited_.end(), 0u);
+    stamp_ = 1;
+  }
+  cut = false;
+}
+
+void ChainState::gather_overlaps(StepContext& ctx, std::uint32_t around,
+                                 std::vector<std::uint32_t>& out) const {
+  const double tol = ctx.def.touch_tolerance;
+  if (2.0 * ctx.broadphase.moved() < ctx.broadphase.slack()) {
+    // No two bodies can have closed more than the slack since the sweep began: every body that
+    // overlaps `around` now is among its near pairs.
+    const Bodies& b = ctx.bodies;
+    const double x = b.x[around], y = b.y[around], hx = b.hx[around], hy = b.hy[around];
+    for (std::uint32_t k = near_start_[around]; k < near_start_[around + 1]; ++k) {
+      const std::uint32_t j = near_[k];
+      if ((hx + b.hx[j]) - std::abs(x - b.x[j]) > tol &&
+          (hy + b.hy[j]) - std::abs(y - b.y[j]) > tol) {
+        out.push_back(j);
+      }
+    }
+  } else {
+    ctx.broadphase.for_each_overlap(ctx.bodies, around, tol,
+                                    [&](std::uint32_t j) { out.push_back(j); });
+  }
+}
+
+void ChainState::report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,
+                              std::uint32_t blocker, int axis) {
+  assert(anchor != kNoSlot && blocker != kNoSlot);
+  crushed_[body] = step_;
+  ctx.crushes.push_back({body, anchor, blocker, static_cast<Axis>(axis)});
+  ++ctx.stats.crush_events;
+}
+
+}  // namespace chain::detail

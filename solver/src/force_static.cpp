@@ -1,0 +1,110 @@
+#include "force_static.h"
+
+#include <algorithm>
+
+namespace chain::detail {
+namespace {
+
+int overlap_axis(const Overlap& o) {
+  return o.x <= o.y ? 0 : 1;
+}  // ties go to x, as in 2014
+
+}  // namespace
+
+void ForceStatic::propagate(StepContext& ctx, ChainState& state, std::uint32_t root,
+                            std::uint32_t wall, int axis, int backing, std::uint32_t anchor,
+                            std::uint32_t depth) {
+  const double tol = ctx.def.touch_tolerance;
+  const double* p = ctx.pos(axis);
+  const double* h = ctx.half(axis);
+  queue_.clear();
+  queue_.push_back({root, wall, depth, backing});
+  for (std::size_t k = 0; k < queue_.size() && !state.cut; ++k) {
+    const Item item = queue_[k];
+    const std::uint32_t w = item.body;
+    ctx.stats.max_depth = std::max(ctx.stats.max_depth, item.depth);
+    cands_.clear();
+    state.gather_overlaps(ctx, w, cands_);
+    crush_check(ctx, state, item, axis, anchor);
+    for (std::size_t i = 0; i < cands_.size(); ++i) {
+      const std::uint32_t c = cands_[i];
+      if (ctx.bodies.immovable(c) || state.crushed(c)) continue;
+      const Overlap o = overlap(ctx.bodies, w, c);
+      if (o.x <= tol || o.y <= tol) continue;  // a yield may have moved w off it
+      if (state.visited(c)) {
+        // Bodies held by open frames follow back when their frame closes; any other body already
+        // in this chain keeps its overlap for the next sweep.
+        if (state.on_stack(c) == 0) state.leftover = true;
+        continue;
+      }
+      if (overlap_axis(o) != axis) {
+        state.leftover = true;  // they meet across the chaining axis: the next sweep takes it
+        continue;
+      }
+      const int dir = ChainState::away(ctx, axis, w, c);
+      if (dir == item.backing) {
+        // c lies between the wall and the wall's own support. If c rests on that side too, the
+        // wall rests on c; otherwise c is not this wall's to push.
+        if (!state.supported_towards(axis, c, dir)) {
+          state.leftover = true;
+          continue;
+        }
+        if (!state.spend(ctx)) return;
+        yield(ctx, state, w, c, axis);
+        cands_.clear();  // w moved: look again from its new place
+        state.gather_overlaps(ctx, w, cands_);
+        i = static_cast<std::size_t>(-1);
+        continue;
+      }
+      if (state.supported_towards(axis, c, dir)) {
+        // Supported beyond the wall while the wall is supported behind: a squeeze.
+        state.report_crush(ctx, w, anchor, state.support_anchor(c), axis);
+        break;
+      }
+      if (!state.spend(ctx)) return;
+      state.visit(c);
+      ctx.note_push(c, w, axis, dir);
+      // Placed against w rather than moved by the depth: resting stacks rebuild the same
+      // positions every step instead of accumulating rounding.
+      ctx.place(c, axis, p[w] + dir * (h[c] + h[w]));
+      state.support(axis, c, -dir, anchor);
+      queue_.push_back({c, w, item.depth + 1, -dir});
+    }
+  }
+}
+
+void ForceStatic::yield(StepContext& ctx, ChainState& state, std::uint32_t w, std::uint32_t c,
+                        int axis) {
+  const int c_side = ChainState::away(ctx, axis, w, c);
+  const double* p = ctx.pos(axis);
+  const double* h = ctx.half(axis);
+  ctx.note_push(w, c, axis, -c_side);
+  ctx.place(w, axis, p[c] - c_side * (h[w] + h[c]));
+  state.leftover = true;  // bodies this wall already pushed may now overlap it again
+}
+
+// item.body was pushed against item.wall, away from its backing; an immovable body overlapping
+// it beyond, along the chaining axis, squeezes it: it is centred between the two and reported.
+void ForceStatic::crush_check(StepContext& ctx, ChainState& state, const Item& item, int axis,
+                              std::uint32_t anchor) {
+  const Bodies& bodies = ctx.bodies;
+  const double tol = ctx.def.touch_tolerance;
+  const double* p = ctx.pos(axis);
+  const double* h = ctx.half(axis);
+  const std::uint32_t body = item.body, wall = item.wall;
+  const int side = -item.backing;
+  for (const std::uint32_t d : cands_) {
+    if (d == wall || !bodies.immovable(d)) continue;
+    const Overlap o = overlap(bodies, body, d);
+    if (o.x <= tol || o.y <= tol || overlap_axis(o) != axis) continue;
+    if ((p[d] - p[wall]) * side <= 0.0) continue;  // d is on the wall's side, not beyond body
+    const double wall_face = p[wall] + side * h[wall];
+    const double blocker_face = p[d] - side * h[d];
+    ctx.place(body, axis, 0.5 * (wall_face + blocker_face));
+    ctx.note_push(body, d, axis, -side);
+    state.report_crush(ctx, body, anchor == kNoSlot ? wall : anchor, d, axis);
+    return;
+  }
+}
+
+}  // namespace chain::detail

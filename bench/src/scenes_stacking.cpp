@@ -105,26 +105,68 @@ Scene overlap_recovery(const SceneParams& p) {
   return s;
 }
 
-// Boxes of mixed sizes dropped in a grid into a container about as deep as it is wide.
+// Boxes of mixed sizes dropped one by one into a container twice as wide as the pile ends up
+// deep, each onto the highest box under it: a height map of 1 cm columns remembers, for every
+// column, the top of the highest box that reaches into it and which box that is. A box never
+// starts inside another (its base is the highest top any of its columns holds), and it is kept
+// only where the box it rests on lies under at least 10 cm of it; otherwise another x is drawn.
+// (Minimum-axis push-out slides a box that rests on a sliver of a corner off it, as a
+// frictionless box would, into the void below.) The pile starts at rest, box on box, with the
+// gaps and overhangs a real drop leaves.
 Scene random_pile(const SceneParams& p) {
   Scene s;
   s.name = "random_pile";
   const int n = p.count("n");
   PortableRandom rng(static_cast<std::uint64_t>(p.count("seed")) * 7919u + 17u);
-  const double pitch = 1.6;  // > the largest box: boxes start apart
-  const int cols = std::max(8, static_cast<int>(std::sqrt(static_cast<double>(n)) * 1.2));
-  const int rows = (n + cols - 1) / cols;
-  const double width = cols * pitch;
-  const double height = rows * pitch + 4.0;
+  const double width = std::max(10.0, 2.0 * std::sqrt(static_cast<double>(n)));
+  constexpr double kColumn = 0.01;
+  constexpr double kMinSupport = 0.1;
+  constexpr int kTries = 16;
+  const auto columns = static_cast<std::size_t>(std::ceil(width / kColumn)) + 1;
+  std::vector<double> skyline(columns, 0.0);
+  std::vector<std::int32_t> owner(columns, -1);  // box whose top the column holds, -1: ground
+  auto column = [&](double x) {
+    return static_cast<std::size_t>(std::floor((x + 0.5 * width) / kColumn));
+  };
+  std::vector<SceneBody> boxes;
+  boxes.reserve(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const double hx = rng.uniform(0.3, 0.7), hy = rng.uniform(0.3, 0.7);
+    double x = 0.0, base = 0.0;
+    std::size_t c0 = 0, c1 = 0;
+    for (int attempt = 0; attempt < kTries; ++attempt) {
+      x = rng.uniform(-0.5 * width + hx, 0.5 * width - hx);
+      c0 = column(x - hx);
+      c1 = std::min(columns - 1, column(x + hx));
+      base = *std::max_element(skyline.begin() + static_cast<std::ptrdiff_t>(c0),
+                               skyline.begin() + static_cast<std::ptrdiff_t>(c1) + 1);
+      bool supported = base == 0.0;  // the ground supports everything
+      for (std::size_t c = c0; c <= c1 && !supported; ++c) {
+        if (skyline[c] != base || owner[c] < 0) continue;
+        const SceneBody& below = boxes[static_cast<std::size_t>(owner[c])];
+        const double shared = std::min(x + hx, below.center.x + below.half_extents.x) -
+                              std::max(x - hx, below.center.x - below.half_extents.x);
+        supported = shared >= kMinSupport;
+      }
+      if (supported) break;
+    }
+    for (std::size_t c = c0; c <= c1; ++c) {
+      skyline[c] = base + 2.0 * hy;
+      owner[c] = i;
+    }
+    SceneBody b;
+    b.name = build::label("box", i);
+    b.center = {x, base + hy};
+    b.half_extents = {hx, hy};
+    b.mass = 4.0 * hx * hy;
+    boxes.push_back(std::move(b));
+  }
+  const double height = *std::max_element(skyline.begin(), skyline.end()) + 5.0;
   ground(s, 0.5 * width + 1.0);
   box(s, "wall_left", BodyKind::kStatic, {-0.5 * width - 0.5, 0.5 * height}, {0.5, 0.5 * height});
   box(s, "wall_right", BodyKind::kStatic, {0.5 * width + 0.5, 0.5 * height}, {0.5, 0.5 * height});
-  for (int i = 0; i < n; ++i) {
-    const double h = rng.uniform(0.3, 0.7), w = rng.uniform(0.3, 0.7);
-    const double x = -0.5 * width + pitch * (i % cols + 0.5) + rng.uniform(-0.05, 0.05);
-    const double y = 1.0 + pitch * (i / cols + 0.5);
-    box(s, build::label("box", i), BodyKind::kDynamic, {x, y}, {w, h}, 4.0 * w * h);
-  }
+  for (SceneBody& b : boxes)
+    s.bodies.push_back(std::move(b));
   return s;
 }
 
@@ -186,7 +228,7 @@ std::vector<SceneRecipe> stacking_scenes() {
        300},
       {"random_pile",
        "stacking",
-       "n boxes of mixed sizes dropped into a container",
+       "n boxes of mixed sizes dropped one by one into a container: a pile at rest",
        {{"n", 1000, 1, 2000000, true, "boxes"}, {"seed", 1, 0, 2147483647, true, "layout seed"}},
        random_pile,
        [](const SceneParams& p) { return static_cast<std::size_t>(p.count("n")) + 3; },

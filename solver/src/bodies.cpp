@@ -17,6 +17,43 @@ std::uint64_t order_key(double f) {
   return (bits & kSign) ? ~bits : (bits | kSign);
 }
 
+// Spreads the low 32 bits of v over the even bits of the result.
+std::uint64_t spread_bits(std::uint64_t v) {
+  v &= 0xffffffffull;
+  v = (v | (v << 16)) & 0x0000ffff0000ffffull;
+  v = (v | (v << 8)) & 0x00ff00ff00ff00ffull;
+  v = (v | (v << 4)) & 0x0f0f0f0f0f0f0f0full;
+  v = (v | (v << 2)) & 0x3333333333333333ull;
+  v = (v | (v << 1)) & 0x5555555555555555ull;
+  return v;
+}
+
+// Z-order keys of the centres on a grid of about one body size: bodies near each other in space
+// get keys near each other, so sorting by them puts neighbours close in memory (a row-major
+// order puts the body above another a whole row of bodies away).
+std::vector<std::uint64_t> z_order(const Bodies& b) {
+  const std::uint32_t n = b.size();
+  std::vector<std::uint64_t> keys(n, 0);
+  if (n == 0) return keys;
+  std::vector<double> sizes(n);
+  double x0 = b.x(0), y0 = b.y(0), x1 = x0, y1 = y0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    sizes[i] = 2.0 * std::max(b.hx(i), b.hy(i));
+    x0 = std::min(x0, b.x(i)), x1 = std::max(x1, b.x(i));
+    y0 = std::min(y0, b.y(i)), y1 = std::max(y1, b.y(i));
+  }
+  std::nth_element(sizes.begin(), sizes.begin() + n / 2, sizes.end());
+  // A cell the median body's size, or coarser if the scene is too wide for 32-bit coordinates.
+  const double cell =
+      std::max({sizes[n / 2], (x1 - x0) * 0x1.0p-31, (y1 - y0) * 0x1.0p-31, 1e-300});
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const auto qx = static_cast<std::uint64_t>((b.x(i) - x0) / cell);
+    const auto qy = static_cast<std::uint64_t>((b.y(i) - y0) / cell);
+    keys[i] = spread_bits(qx) | (spread_bits(qy) << 1);
+  }
+  return keys;
+}
+
 int kind_rank(BodyType type) {
   switch (type) {
     case BodyType::kDynamic:
@@ -41,12 +78,9 @@ void gather(std::vector<T>& v, const std::vector<std::uint32_t>& order) {
 
 void Bodies::append(const BodyDef& def, std::uint32_t body_id) {
   const bool dynamic = def.type == BodyType::kDynamic;
-  x.push_back(def.center.x);
-  y.push_back(def.center.y);
+  box.push_back({{def.center.x, def.center.y}, {def.half_extents.x, def.half_extents.y}});
   vx.push_back(def.type == BodyType::kStatic ? 0.0 : def.velocity.x);
   vy.push_back(def.type == BodyType::kStatic ? 0.0 : def.velocity.y);
-  hx.push_back(def.half_extents.x);
-  hy.push_back(def.half_extents.y);
   mass.push_back(dynamic ? def.mass : 0.0);
   gravity_scale.push_back(dynamic ? def.gravity_scale : 0.0);
   restitution.push_back(def.restitution);
@@ -64,7 +98,7 @@ std::uint32_t Bodies::swap_remove(std::uint32_t slot) {
     v[slot] = v[last];
     v.pop_back();
   };
-  move_last(x), move_last(y), move_last(vx), move_last(vy), move_last(hx), move_last(hy);
+  move_last(box), move_last(vx), move_last(vy);
   move_last(mass), move_last(gravity_scale), move_last(restitution);
   move_last(drive_x), move_last(drive_y), move_last(driven), move_last(touching);
   move_last(type), move_last(id);
@@ -75,19 +109,21 @@ void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id) {
   const std::uint32_t n = size();
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  // Every field that tells bodies apart takes part, creation order (the id) only breaks ties
-  // between bodies that are identical in every respect, where the choice cannot matter.
+  // Kind first, then place along a Z-order curve; every field that tells bodies apart takes part
+  // after that, and creation order (the id) only breaks ties between bodies that are identical
+  // in every respect, where the choice cannot matter.
+  const std::vector<std::uint64_t> z = z_order(*this);
   auto key = [&](std::uint32_t i) {
-    return std::tuple(kind_rank(type[i]), order_key(y[i]), order_key(x[i]), order_key(hy[i]),
-                      order_key(hx[i]), order_key(mass[i]), order_key(vx[i]), order_key(vy[i]),
+    return std::tuple(kind_rank(type[i]), z[i], order_key(y(i)), order_key(x(i)), order_key(hy(i)),
+                      order_key(hx(i)), order_key(mass[i]), order_key(vx[i]), order_key(vy[i]),
                       order_key(gravity_scale[i]), order_key(restitution[i]), driven[i],
                       order_key(drive_x[i]), order_key(drive_y[i]), id[i]);
   };
   std::sort(order.begin(), order.end(),
             [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
 
-  gather(x, order), gather(y, order), gather(vx, order), gather(vy, order);
-  gather(hx, order), gather(hy, order), gather(mass, order), gather(gravity_scale, order);
+  gather(box, order), gather(vx, order), gather(vy, order);
+  gather(mass, order), gather(gravity_scale, order);
   gather(restitution, order), gather(drive_x, order), gather(drive_y, order);
   gather(driven, order), gather(touching, order), gather(type, order), gather(id, order);
 

@@ -15,7 +15,7 @@ constexpr std::size_t kMaxLevels = 8;
 constexpr double kLevelSpread = 2.0;
 
 double largest_half(const Bodies& b, std::uint32_t i) {
-  return std::max(b.hx[i], b.hy[i]);
+  return std::max(b.hx(i), b.hy(i));
 }
 
 std::uint32_t cells_spanned(double lo, double hi, double inv_cell) {
@@ -81,8 +81,10 @@ void Broadphase::configure(const Bodies& bodies) {
 
 void Broadphase::build(const Bodies& bodies) {
   margin_ = 0.0;
-  std::copy(bodies.x.begin(), bodies.x.end(), build_x_.begin());
-  std::copy(bodies.y.begin(), bodies.y.end(), build_y_.begin());
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    build_x_[i] = bodies.x(i);
+    build_y_[i] = bodies.y(i);
+  }
   for (Level& level : levels_)
     level.build(bodies, entry_of_);
 }
@@ -91,27 +93,20 @@ bool Broadphase::refresh(const Bodies& bodies) {
   double moved = 0.0;
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
     moved = std::max(
-        moved, std::max(std::abs(bodies.x[i] - build_x_[i]), std::abs(bodies.y[i] - build_y_[i])));
+        moved, std::max(std::abs(bodies.x(i) - build_x_[i]), std::abs(bodies.y(i) - build_y_[i])));
   }
-  if (!(4.0 * moved < slack_)) return false;
   margin_ = moved;
-  for (Level& level : levels_) {
-    for (Entry& e : level.entries) {
-      e.x = bodies.x[e.body];
-      e.y = bodies.y[e.body];
-    }
-  }
-  return true;
+  return near_pairs_hold();
 }
 
 void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry_of) {
   double min_x = std::numeric_limits<double>::max(), min_y = min_x;
   double max_x = std::numeric_limits<double>::lowest(), max_y = max_x;
   for (const std::uint32_t i : bodies) {
-    min_x = std::min(min_x, b.x[i]);
-    max_x = std::max(max_x, b.x[i]);
-    min_y = std::min(min_y, b.y[i]);
-    max_y = std::max(max_y, b.y[i]);
+    min_x = std::min(min_x, b.x(i));
+    max_x = std::max(max_x, b.x(i));
+    min_y = std::min(min_y, b.y(i));
+    max_y = std::max(max_y, b.y(i));
   }
   // Half a cell below the lowest centre: scenes built on a lattice (stacks, rows) then have
   // their centres mid-cell, and a query around a box spans 3 cells a side, not 4.
@@ -125,8 +120,8 @@ void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry
   std::fill(cell_start.begin(), cell_start.end(), 0u);
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     const std::uint32_t i = bodies[k];
-    key_x[k] = cell_x(b.x[i]);
-    key_y[k] = cell_y(b.y[i]);
+    key_x[k] = cell_x(b.x(i));
+    key_y[k] = cell_y(b.y(i));
     keys[k] = bucket(key_x[k], key_y[k]);
     ++cell_start[keys[k] + 1];
   }
@@ -137,7 +132,7 @@ void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry
     const std::uint32_t i = bodies[k];
     entry_of[i] = cursor[keys[k]]++;
     entries[entry_of[i]] =
-        Entry{i, key_x[k], key_y[k], b.immovable(i) ? 1u : 0u, b.x[i], b.y[i], b.hx[i], b.hy[i]};
+        Entry{i, key_x[k], key_y[k], b.immovable(i) ? 1u : 0u, b.x(i), b.y(i), b.hx(i), b.hy(i)};
   }
 }
 

@@ -10,9 +10,9 @@
 // cell and a 3-cell row of a query is one contiguous run of entries; otherwise rows wrap around
 // the table like a hash, and entries are filtered by cell.
 //
-// A body pushed after build() stays in the bucket it was built into, but its entry follows it:
-// note_move() updates the entry and widens later queries by the largest displacement so far,
-// so a pair created by a push is never missed.
+// A body moved after build() stays in the bucket and entry it was built into: note_move() widens
+// later queries by the largest displacement so far, and queries test current positions from
+// the bodies, so a pair created by a push is never missed.
 #pragma once
 
 #include "bodies.h"
@@ -30,30 +30,28 @@ class Broadphase {
   void configure(const Bodies& bodies);
   // Buckets every body at its current position.
   void build(const Bodies& bodies);
-  // Brings every entry up to date after moves the broadphase was not told of (integration).
-  // True while no body has moved a quarter of the slack since build(): pairs closer than
-  // slack - 2 * moved() apart were all near pairs then, and the grid needs no rebuild.
+  // Accounts for moves the broadphase was not told of (integration). True while no body has
+  // moved a quarter of the slack since build(): every pair that can overlap now was a near pair
+  // then, and the grid needs no rebuild.
   bool refresh(const Bodies& bodies);
   // Changes whenever configure() runs (the body set changed).
   std::uint64_t generation() const { return generation_; }
   void note_move(std::uint32_t body, double x, double y) {
     margin_ =
         std::max(margin_, std::max(std::abs(x - build_x_[body]), std::abs(y - build_y_[body])));
-    Entry& e = levels_[level_of_[body]].entries[entry_of_[body]];
-    e.x = x;
-    e.y = y;
   }
+  // True while no body has moved a quarter of the slack since build(): every pair that can
+  // overlap now was a near pair then.
+  bool near_pairs_hold() const { return 4.0 * margin_ < slack_; }
   // Pairs closer than this are near pairs.
   double slack() const { return slack_; }
   // The largest displacement of any body since build() (as of the last refresh or move).
   double moved() const { return margin_; }
 
-  // fn(i, j, overlapping) with i < j, once for every pair whose boxes are less than slack() apart
-  // on both axes at build time, except pairs of two immovable bodies; `overlapping` when they
-  // overlap by more than `tolerance` on both. Order depends only on positions and solve order.
-  // Call right after build().
+  // fn(i, j) with i < j, once for every pair whose boxes are less than slack() apart on both
+  // axes at build time, except pairs of two immovable bodies. Call right after build().
   template <class Fn>
-  void for_each_near_pair(double tolerance, Fn&& fn) const;
+  void for_each_near_pair(Fn&& fn) const;
 
   // fn(j) once for every body j != body whose box now overlaps body's box by more than
   // `tolerance` on both axes. Order depends only on positions and solve order.
@@ -68,7 +66,7 @@ class Broadphase {
   std::size_t level_count() const { return levels_.size(); }
 
  private:
-  struct Entry {  // a body: the cell it was built into, and its current box
+  struct Entry {  // a body: the cell it was built into, and its box then
     std::uint32_t body;
     std::int32_t cx, cy;
     std::uint32_t immovable;
@@ -161,12 +159,12 @@ void Broadphase::Level::scan(CellRange r, Fn&& fn) const {
 }
 
 template <class Fn>
-void Broadphase::for_each_near_pair(double tolerance, Fn&& fn) const {
+void Broadphase::for_each_near_pair(Fn&& fn) const {
   const double gap = -slack_;
   auto test = [&](const Entry& e, const Entry& f) {
-    if ((e.immovable & f.immovable) || !within(e.x, e.y, e.hx, e.hy, f, gap)) return;
-    fn(std::min(e.body, f.body), std::max(e.body, f.body),
-       within(e.x, e.y, e.hx, e.hy, f, tolerance));
+    if (!(e.immovable & f.immovable) && within(e.x, e.y, e.hx, e.hy, f, gap)) {
+      fn(std::min(e.body, f.body), std::max(e.body, f.body));
+    }
   };
   for (std::size_t l = 0; l < levels_.size(); ++l) {
     const Level& level = levels_[l];
@@ -203,17 +201,21 @@ void Broadphase::for_each_near_pair(double tolerance, Fn&& fn) const {
 template <class Fn>
 void Broadphase::for_each_overlap(const Bodies& bodies, std::uint32_t body, double tolerance,
                                   Fn&& fn) const {
-  const double x = bodies.x[body], y = bodies.y[body], hx = bodies.hx[body], hy = bodies.hy[body];
+  const double x = bodies.x(body), y = bodies.y(body), hx = bodies.hx(body), hy = bodies.hy(body);
   for (const Level& level : levels_) {
     level.scan(level.cells_near(x, y, hx, hy, margin_), [&](const Entry& e) {
-      if (e.body != body && within(x, y, hx, hy, e, tolerance)) fn(e.body);
+      const std::uint32_t j = e.body;
+      if (j != body && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tolerance &&
+          (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tolerance) {
+        fn(j);
+      }
     });
   }
 }
 
 template <class Fn>
 void Broadphase::for_each_stale_candidate(const Bodies& bodies, std::uint32_t body, Fn&& fn) const {
-  const double x = build_x_[body], y = build_y_[body], hx = bodies.hx[body], hy = bodies.hy[body];
+  const double x = build_x_[body], y = build_y_[body], hx = bodies.hx(body), hy = bodies.hy(body);
   for (const Level& level : levels_) {
     level.scan(level.cells_near(x, y, hx, hy, 0.0), [&](const Entry& e) { fn(e.body); });
   }

@@ -1,15 +1,12 @@
 #include "chain_resolver.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace chain::detail {
 namespace {
 
 constexpr std::uint32_t kUnreached = 0xffffffffu;
-
-int overlap_axis(const Overlap& o) {
-  return o.x <= o.y ? 0 : 1;
-}  // ties go to x, as in 2014
 
 }  // namespace
 
@@ -28,17 +25,37 @@ void ChainResolver::resolve(StepContext& ctx) {
   state_.leftover = true;
   for (int pass = 0; pass < ctx.def.max_passes && state_.leftover; ++pass) {
     state_.leftover = false;
-    gather_contacts(ctx);
+    if (pass == 0) {
+      gather_contacts(ctx);
+    } else {
+      gather_suspect_contacts(ctx);
+    }
+    state_.clear_suspects();
     ++ctx.stats.passes;
     ctx.stats.contacts += static_cast<std::uint32_t>(contacts_.size());
     if (contacts_.empty()) break;
     order_contacts(ctx);
-    for (const Pair& c : ordered_) {
-      if (state_.crushed(c.a) || state_.crushed(c.b)) continue;
-      const Overlap o = overlap(bodies, c.a, c.b);
-      if (o.x <= tol || o.y <= tol) continue;
+    // Contacts with immovable bodies come first: every dynamic body there is placed against its
+    // immovable body, and the walls they become propagate together, one chain, layer by layer.
+    std::size_t k = 0;
+    state_.begin_chain();
+    for (; k < ordered_.size() && bodies.immovable(ordered_[k].b); ++k) {
+      const Pair& c = ordered_[k];
+      if (state_.crushed(c.a) || !overlapping(bodies, c.a, c.b, tol)) continue;
       if (ctx.budget == 0) {
         ++ctx.stats.budget_hits;  // a contact no chain could reach
+        continue;
+      }
+      open(ctx, c.a, c.b, 0.0, kAnyAxis, true, c.b);
+    }
+    walls_.run(ctx, state_);
+    if (state_.cut) ++ctx.stats.budget_hits;
+    for (; k < ordered_.size(); ++k) {
+      const Pair& c = ordered_[k];
+      if (state_.crushed(c.a) || state_.crushed(c.b) || !overlapping(bodies, c.a, c.b, tol))
+        continue;
+      if (ctx.budget == 0) {
+        ++ctx.stats.budget_hits;
         continue;
       }
       run_chain(ctx, c.a, c.b);
@@ -46,30 +63,58 @@ void ChainResolver::resolve(StepContext& ctx) {
   }
 }
 
-// One grid scan gives the contacts (overlapping pairs) and the near pairs, which chains look
-// through instead of the grid while bodies have moved less than half the slack. While no body
-// has moved a quarter of the slack since that scan, the near pairs still hold every pair that can
-// overlap, and the contacts are found among them without a new scan.
+// A grid scan gives the near pairs (closer than the slack), which chains look through instead of
+// the grid while bodies have moved less than half the slack. While no body has moved a quarter
+// of the slack since that scan, they still hold every pair that can overlap, and no new scan is
+// needed: the contacts (overlapping pairs) are always found among them.
 void ChainResolver::gather_contacts(StepContext& ctx) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
-  contacts_.clear();
   if (near_generation_ == ctx.broadphase.generation() && ctx.broadphase.refresh(bodies)) {
-    for (const Pair& p : near_pairs_) {
-      const Overlap o = overlap(bodies, p.a, p.b);
-      if (o.x > tol && o.y > tol) contacts_.push_back(p);
-    }
     state_.begin_sweep(bodies, nullptr);
+  } else {
+    ctx.broadphase.build(bodies);
+    near_generation_ = ctx.broadphase.generation();
+    near_pairs_.clear();
+    ctx.broadphase.for_each_near_pair([&](std::uint32_t i, std::uint32_t j) {
+      near_pairs_.push_back({i, j});
+    });
+    state_.begin_sweep(bodies, &near_pairs_);
+  }
+  // Walked body by body in solve order: each body's data is read once, its neighbours are close
+  // to it in memory, and the contacts come out in an order that depends on the bodies alone.
+  contacts_.clear();
+  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
+    for (const std::uint32_t j : state_.near(i)) {
+      if (j > i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
+          (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol) {
+        contacts_.push_back({i, j});
+      }
+    }
+  }
+}
+
+// A later sweep can only find the overlaps the last one's chains left behind, and those flagged
+// the bodies involved: the contacts are among the near pairs of those bodies, while they hold.
+void ChainResolver::gather_suspect_contacts(StepContext& ctx) {
+  const Broadphase& bp = ctx.broadphase;
+  if (near_generation_ != bp.generation() || !bp.near_pairs_hold()) {
+    near_generation_ = 0;  // forces a new scan
+    gather_contacts(ctx);
     return;
   }
-  ctx.broadphase.build(bodies);
-  near_generation_ = ctx.broadphase.generation();
-  near_pairs_.clear();
-  ctx.broadphase.for_each_near_pair(tol, [&](std::uint32_t i, std::uint32_t j, bool overlapping) {
-    near_pairs_.push_back({i, j});
-    if (overlapping) contacts_.push_back({i, j});
-  });
-  state_.begin_sweep(bodies, &near_pairs_);
+  const Bodies& bodies = ctx.bodies;
+  const double tol = ctx.def.touch_tolerance;
+  contacts_.clear();
+  for (const std::uint32_t i : state_.suspects()) {
+    for (const std::uint32_t j : state_.near(i)) {
+      if (state_.suspect(j) && j < i) continue;  // both flagged: the pair is taken once
+      const Overlap o = overlap(bodies, i, j);
+      if (o.x > tol && o.y > tol) contacts_.push_back({std::min(i, j), std::max(i, j)});
+    }
+  }
+  state_.begin_sweep(bodies, nullptr);
 }
 
 // Levels: immovable bodies 0, dynamic bodies their contact-graph distance from one (breadth
@@ -77,28 +122,54 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
 // a dynamic pair is oriented so that `a` is the body nearer to the immovable ones.
 void ChainResolver::order_contacts(StepContext& ctx) {
   const Bodies& bodies = ctx.bodies;
-  const std::uint32_t nd = bodies.dynamic_end;
-  level_.assign(nd, kUnreached);
-  adj_start_.assign(nd + 2, 0);
+  // Number the dynamic bodies the contacts touch: the work is in proportion to the contacts, not
+  // to the world.
+  if (local_.size() != bodies.size()) {
+    local_.assign(bodies.size(), 0);
+    local_mark_.assign(bodies.size(), 0);
+    mark_ = 0;
+  }
+  if (++mark_ == 0) {
+    std::fill(local_mark_.begin(), local_mark_.end(), 0u);
+    mark_ = 1;
+  }
+  involved_.clear();
+  auto local = [&](std::uint32_t body) {
+    if (local_mark_[body] != mark_) {
+      local_mark_[body] = mark_;
+      local_[body] = static_cast<std::uint32_t>(involved_.size());
+      involved_.push_back(body);
+    }
+    return local_[body];
+  };
+  for (const Pair& c : contacts_) {
+    local(c.a);  // c.a < c.b and dynamic slots come first: c.a is dynamic
+    if (!bodies.immovable(c.b)) local(c.b);
+  }
+  const auto m = static_cast<std::uint32_t>(involved_.size());
+  level_.assign(m, kUnreached);
+  adj_start_.assign(m + 2, 0);
   queue_.clear();
   for (const Pair& c : contacts_) {
-    if (bodies.immovable(c.b)) {  // c.a < c.b and dynamic slots come first: c.a is dynamic
-      if (level_[c.a] == kUnreached) {
-        level_[c.a] = 1;
-        queue_.push_back(c.a);
+    const std::uint32_t a = local_[c.a];
+    if (bodies.immovable(c.b)) {
+      if (level_[a] == kUnreached) {
+        level_[a] = 1;
+        queue_.push_back(a);
       }
     } else {
-      ++adj_start_[c.a + 2];
-      ++adj_start_[c.b + 2];
+      ++adj_start_[a + 2];
+      ++adj_start_[local_[c.b] + 2];
     }
   }
-  for (std::uint32_t i = 2; i < nd + 2; ++i)
+  for (std::uint32_t i = 2; i < m + 2; ++i)
     adj_start_[i] += adj_start_[i - 1];
-  adj_.resize(adj_start_[nd + 1]);
-  for (const Pair& c : contacts_) {  // adj_start_[i + 1] is the fill cursor of body i
+  adj_.resize(adj_start_[m + 1]);
+  for (const Pair& c : contacts_) {  // adj_start_[i + 1] is the fill cursor of local body i
     if (bodies.immovable(c.b)) continue;
-    adj_[adj_start_[c.a + 1]++] = c.b;
-    adj_[adj_start_[c.b + 1]++] = c.a;
+    const std::uint32_t a = local_[c.a], b = local_[c.b];
+    adj_[adj_start_[a + 1]++] = b;
+    adj_[adj_start_[b + 1]++] = a;
   }
   for (std::size_t k = 0; k < queue_.size(); ++k) {
     const std::uint32_t u = queue_[k];
@@ -115,7 +186,7 @@ void ChainResolver::order_contacts(StepContext& ctx) {
     top = std::max(top, level_[u]);
   const std::uint32_t last = top + 1;  // the bucket of contacts no immovable body reaches
   auto bucket = [&](const Pair& c) {
-    return bodies.immovable(c.b) ? 0u : std::min({level_[c.a], level_[c.b], last});
+    return bodies.immovable(c.b) ? 0u : std::min({level_[local_[c.a]], level_[local_[c.b]], last});
   };
   level_count_.assign(last + 2, 0);
   for (const Pair& c : contacts_)
@@ -125,7 +196,7 @@ void ChainResolver::order_contacts(StepContext& ctx) {
   ordered_.resize(contacts_.size());
   for (const Pair& c : contacts_) {
     Pair o = c;
-    if (!bodies.immovable(c.b) && level_[c.b] < level_[c.a]) std::swap(o.a, o.b);
+    if (!bodies.immovable(c.b) && level_[local_[c.b]] < level_[local_[c.a]]) std::swap(o.a, o.b);
     ordered_[level_count_[bucket(c)]++] = o;
   }
 }
@@ -142,7 +213,7 @@ void ChainResolver::run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b
       std::swap(a, b);
     }
   }
-  open(ctx, a, b, 0.0, kAnyAxis, wall, wall ? b : kNoSlot);
+  if (!open(ctx, a, b, 0.0, kAnyAxis, wall, wall ? b : kNoSlot)) walls_.run(ctx, state_);
   while (!stack_.empty()) {
     Frame& f = stack_.back();
     std::uint32_t c = 0;
@@ -151,11 +222,13 @@ void ChainResolver::run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b
       if (next_candidate(ctx, f, f.a, c)) {
         const bool w = bodies.immovable(c);
         if (!open(ctx, f.a, c, f.extra + bodies.mass[f.b], f.chain_axis, w, w ? c : kNoSlot)) {
+          walls_.run(ctx, state_);
           hand_back(ctx, last_);
         }
       } else if (f.frozen) {  // a leans on an immovable body, and b on a: b is a wall now
-        walls_.propagate(ctx, state_, f.b, f.a, f.chain_axis, f.sign, f.anchor,
-                         static_cast<std::uint32_t>(stack_.size()));
+        walls_.add(
+            {f.b, f.a, f.chain_axis, f.sign, f.anchor, static_cast<std::uint32_t>(stack_.size())});
+        walls_.run(ctx, state_);
         close(ctx);
       } else {
         f.stage = Stage::kForward;
@@ -164,6 +237,7 @@ void ChainResolver::run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b
     } else if (next_candidate(ctx, f, f.b, c)) {  // b carries the chain on, a's mass behind it
       const bool w = bodies.immovable(c);
       if (!open(ctx, f.b, c, f.extra + bodies.mass[f.a], f.chain_axis, w, w ? c : kNoSlot)) {
+        walls_.run(ctx, state_);
         hand_back(ctx, last_);
       }
     } else {
@@ -192,7 +266,7 @@ bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, dou
   if (o.x <= tol || o.y <= tol) return false;
   const int push_axis = overlap_axis(o);
   if (axis != kAnyAxis && push_axis != axis) {
-    state_.leftover = true;  // an overlap across the chaining axis: the next sweep takes it
+    state_.flag(a, b);  // an overlap across the chaining axis: the next sweep takes it
     return false;
   }
   const int sign = ChainState::away(ctx, push_axis, b, a);
@@ -204,15 +278,15 @@ bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, dou
   }
   ctx.note_push(a, b, push_axis, sign);
 
-  const double* p = ctx.pos(push_axis);
-  const double* h = ctx.half(push_axis);
+  auto p = [&](std::uint32_t i) { return ctx.bodies.pos(push_axis, i); };
+  auto h = [&](std::uint32_t i) { return ctx.bodies.half(push_axis, i); };
   if (force_static) {
     // Placed against b rather than moved by the depth: resting stacks rebuild the same
     // positions every step instead of accumulating rounding.
-    f.moved = ctx.place(a, push_axis, p[b] + sign * (h[a] + h[b]));
+    f.moved = ctx.place(a, push_axis, p(b) + sign * (h(a) + h(b)));
     f.backing = static_cast<std::int8_t>(-sign);
     state_.support(push_axis, a, -sign, anchor);
-    walls_.propagate(ctx, state_, a, b, push_axis, -sign, anchor, depth);
+    walls_.add({a, b, push_axis, -sign, anchor, depth});  // the caller runs the walls
     return false;
   }
   const double depth_along = sign * (push_axis == 0 ? o.x : o.y);
@@ -253,7 +327,7 @@ bool ChainResolver::next_candidate(StepContext& ctx, Frame& f, std::uint32_t fro
     if (!immovable && state_.visited(c)) {
       // Bodies still on the stack follow back when their frame closes; any other body already
       // in this chain keeps its overlap for the next sweep.
-      if (state_.on_stack(c) == 0) state_.leftover = true;
+      if (state_.on_stack(c) == 0) state_.flag(from, c);
       continue;
     }
     return true;
@@ -293,7 +367,7 @@ void ChainResolver::hand_back(StepContext& ctx, const Frame& done) {
   if (done.moved != 0.0) {
     ctx.move(p.a, p.chain_axis, done.moved);
     p.moved += done.moved;
-    state_.leftover = true;          // a has moved since its own neighbours were checked
+    state_.flag(p.a);                // a has moved since its own neighbours were checked
     gather_candidates(ctx, p, p.b);  // and b: what it overlaps now, not before
   }
   if (done.backing == -p.sign) {  // b leans on an immovable body, and a on b

@@ -49,9 +49,11 @@ class ChainResolver {
   };
 
   void gather_contacts(StepContext& ctx);
+  void gather_suspect_contacts(StepContext& ctx);
   void order_contacts(StepContext& ctx);
   void run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b);
-  // Resolves (a, b): returns true when the push was split and the frame must go on to chain.
+  // Resolves (a, b): returns true when the push was split and the frame must go on to chain;
+  // a force-static push queues its walls, which the caller runs.
   bool open(StepContext& ctx, std::uint32_t a, std::uint32_t b, double extra, int axis,
             bool force_static, std::uint32_t anchor);
   void gather_candidates(StepContext& ctx, Frame& f, std::uint32_t around);
@@ -64,6 +66,9 @@ class ChainResolver {
   ChainState state_;
   ForceStatic walls_;
   std::vector<Pair> contacts_, ordered_, near_pairs_;
+  // Contact ordering, over the bodies the contacts touch (numbered through local_).
+  std::vector<std::uint32_t> involved_, local_, local_mark_;
+  std::uint32_t mark_ = 0;
   std::vector<std::uint32_t> level_, adj_start_, adj_, queue_, level_count_;
   std::vector<Frame> stack_;
   std::vector<std::uint32_t> cands_;

@@ -8,29 +8,33 @@ namespace chain::detail {
 
 void ChainState::begin_step(StepContext& ctx) {
   const std::size_t n = ctx.bodies.size();
-  if (visited_.size() != n) {
+  if (marks_.size() != n) {
     // The body set changed: size every per-body buffer for it now, not in some later step.
-    visited_.assign(n, 0);
-    stamp_ = 0;
-    on_stack_.assign(n, 0);
-    support_anchor_.assign(n, kNoSlot);
+    marks_.assign(n, Marks{});
+    stamp_ = step_ = sweep_ = 0;
+    suspect_stamp_ = 1;
+    suspects_.clear();
+    suspects_.reserve(n);
     near_start_.reserve(n + 2);
     near_.reserve(8 * n);
     ctx.crushes.reserve(std::min<std::size_t>(n, 1024));
   }
   if (++step_ == 0) {  // wrapped: forget every old mark
-    std::fill(crushed_.begin(), crushed_.end(), 0u);
+    for (Marks& m : marks_)
+      m.crushed = 0;
     step_ = 1;
   }
-  crushed_.resize(n, 0);
   leftover = false;
 }
 
 void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near_pairs) {
-  const std::uint32_t n = bodies.size();
-  support_[0].assign(n, 0);
-  support_[1].assign(n, 0);
+  if (++sweep_ == 0) {  // wrapped: forget every old support
+    for (Marks& m : marks_)
+      m.support_sweep = 0;
+    sweep_ = 1;
+  }
   if (!near_pairs) return;
+  const std::uint32_t n = bodies.size();
   near_start_.assign(n + 2, 0);
   for (const Pair& p : *near_pairs)
     ++near_start_[p.a + 2], ++near_start_[p.b + 2];
@@ -43,9 +47,19 @@ void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near
   }
 }
 
+void ChainState::clear_suspects() {
+  suspects_.clear();
+  if (++suspect_stamp_ == 0) {
+    for (Marks& m : marks_)
+      m.suspect = 0;
+    suspect_stamp_ = 1;
+  }
+}
+
 void ChainState::begin_chain() {
   if (++stamp_ == 0) {  // wrapped: forget every old mark
-    std::fill(visited_.begin(), visited_.end(), 0u);
+    for (Marks& m : marks_)
+      m.visited = m.walled = 0;
     stamp_ = 1;
   }
   cut = false;
@@ -58,11 +72,11 @@ void ChainState::gather_overlaps(StepContext& ctx, std::uint32_t around,
     // No two bodies can have closed more than the slack since the sweep began: every body that
     // overlaps `around` now is among its near pairs.
     const Bodies& b = ctx.bodies;
-    const double x = b.x[around], y = b.y[around], hx = b.hx[around], hy = b.hy[around];
+    const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
     for (std::uint32_t k = near_start_[around]; k < near_start_[around + 1]; ++k) {
       const std::uint32_t j = near_[k];
-      if ((hx + b.hx[j]) - std::abs(x - b.x[j]) > tol &&
-          (hy + b.hy[j]) - std::abs(y - b.y[j]) > tol) {
+      if ((hx + b.hx(j)) - std::abs(x - b.x(j)) > tol &&
+          (hy + b.hy(j)) - std::abs(y - b.y(j)) > tol) {
         out.push_back(j);
       }
     }
@@ -75,7 +89,7 @@ void ChainState::gather_overlaps(StepContext& ctx, std::uint32_t around,
 void ChainState::report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,
                               std::uint32_t blocker, int axis) {
   assert(anchor != kNoSlot && blocker != kNoSlot);
-  crushed_[body] = step_;
+  marks_[body].crushed = step_;
   ctx.crushes.push_back({body, anchor, blocker, static_cast<Axis>(axis)});
   ++ctx.stats.crush_events;
 }

@@ -6,6 +6,7 @@
 #include "step_context.h"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace chain::detail {
@@ -30,25 +31,42 @@ class ChainState {
 
   // Direction in which c is pushed out of `from` along axis (+1 or -1).
   static int away(const StepContext& ctx, int axis, std::uint32_t from, std::uint32_t c) {
-    const double* p = axis == 0 ? ctx.bodies.x.data() : ctx.bodies.y.data();
-    return p[c] >= p[from] ? 1 : -1;
+    return ctx.bodies.pos(axis, c) >= ctx.bodies.pos(axis, from) ? 1 : -1;
   }
   bool supported_towards(int axis, std::uint32_t body, int direction) const {
-    return support_[axis][body] == direction;
+    const Marks& m = marks_[body];
+    return m.support_sweep == sweep_ && m.support_dir[axis] == direction;
   }
-  std::uint32_t support_anchor(std::uint32_t body) const { return support_anchor_[body]; }
+  std::uint32_t support_anchor(std::uint32_t body) const { return marks_[body].support_anchor; }
   void support(int axis, std::uint32_t body, int direction, std::uint32_t anchor) {
-    support_[axis][body] = static_cast<std::int8_t>(direction);
-    support_anchor_[body] = anchor;
+    Marks& m = marks_[body];
+    if (m.support_sweep != sweep_) {  // supports of earlier sweeps no longer hold
+      m.support_sweep = sweep_;
+      m.support_dir[0] = m.support_dir[1] = 0;
+    }
+    m.support_dir[axis] = static_cast<std::int8_t>(direction);
+    m.support_anchor = anchor;
+  }
+  // The bodies that were near `body` when the near pairs were last taken.
+  std::span<const std::uint32_t> near(std::uint32_t body) const {
+    return {near_.data() + near_start_[body], near_.data() + near_start_[body + 1]};
   }
 
-  bool visited(std::uint32_t body) const { return visited_[body] == stamp_; }
-  void visit(std::uint32_t body) { visited_[body] = stamp_; }
+  bool visited(std::uint32_t body) const { return marks_[body].visited == stamp_; }
+  void visit(std::uint32_t body) { marks_[body].visited = stamp_; }
+  // Bodies this chain placed as walls along axis: another wall of the chain may push them further.
+  bool walled(std::uint32_t body, int axis) const {
+    return marks_[body].walled == stamp_ && marks_[body].walled_axis == axis;
+  }
+  void wall(std::uint32_t body, int axis) {
+    marks_[body].visited = marks_[body].walled = stamp_;
+    marks_[body].walled_axis = static_cast<std::int8_t>(axis);
+  }
   // Bodies held by frames still open (they follow back when their frame closes).
-  std::uint32_t& on_stack(std::uint32_t body) { return on_stack_[body]; }
-  std::uint32_t on_stack(std::uint32_t body) const { return on_stack_[body]; }
+  std::uint32_t& on_stack(std::uint32_t body) { return marks_[body].on_stack; }
+  std::uint32_t on_stack(std::uint32_t body) const { return marks_[body].on_stack; }
 
-  bool crushed(std::uint32_t body) const { return crushed_[body] == step_; }
+  bool crushed(std::uint32_t body) const { return marks_[body].crushed == step_; }
   // Reports `body` squeezed between `anchor` and `blocker` and leaves it alone for the step.
   void report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,
                     std::uint32_t blocker, int axis);
@@ -64,18 +82,48 @@ class ChainState {
     return true;
   }
 
-  bool leftover = false;  // a chain left an overlap behind: the next sweep must look again
+  // A chain left an overlap behind, involving these bodies: the next sweep looks at them again.
+  void flag(std::uint32_t body) {
+    leftover = true;
+    if (marks_[body].suspect != suspect_stamp_) {
+      marks_[body].suspect = suspect_stamp_;
+      suspects_.push_back(body);
+    }
+  }
+  void flag(std::uint32_t a, std::uint32_t b) {
+    flag(a);
+    flag(b);
+  }
+  bool suspect(std::uint32_t body) const { return marks_[body].suspect == suspect_stamp_; }
+  // The bodies flagged since the sweep began, each once.
+  const std::vector<std::uint32_t>& suspects() const { return suspects_; }
+  void clear_suspects();
+
+  bool leftover = false;  // some chain flagged a body: the next sweep must look again
   bool cut = false;       // the current chain ran out of budget
 
  private:
+  // Everything a chain reads and writes about one body, together: a chain jumps from body to
+  // body, and one cache line then serves two bodies instead of one line per array.
+  struct Marks {
+    std::uint32_t visited = 0;  // stamp of the last chain the body joined
+    std::uint32_t walled = 0;   // stamp of the last chain that placed it as a wall
+    std::uint32_t on_stack = 0;
+    std::uint32_t crushed = 0;               // the step it was crushed in
+    std::uint32_t support_sweep = 0;         // the sweep its supports were found in
+    std::uint32_t support_anchor = kNoSlot;  // the immovable body behind its supports
+    std::uint32_t suspect = 0;               // stamp of the sweep that flagged it
+    std::int8_t support_dir[2] = {0, 0};     // per axis: the direction it is backed in, or 0
+    std::int8_t walled_axis = 0;
+  };
+
   std::vector<std::uint32_t> near_start_, near_;  // near pairs as adjacency lists
-  std::vector<std::uint32_t> visited_;            // stamp of the last chain a body joined
+  std::vector<Marks> marks_;
   std::uint32_t stamp_ = 0;
-  std::vector<std::uint32_t> on_stack_;
-  std::vector<std::uint32_t> crushed_;  // the step a body was crushed in
   std::uint32_t step_ = 0;
-  std::vector<std::int8_t> support_[2];        // per axis: direction a body is backed in, or 0
-  std::vector<std::uint32_t> support_anchor_;  // the immovable body behind that support
+  std::uint32_t sweep_ = 0;
+  std::vector<std::uint32_t> suspects_;
+  std::uint32_t suspect_stamp_ = 1;
 };
 
 }  // namespace chain::detail

@@ -52,10 +52,10 @@ Seed2014Resolver::Push Seed2014Resolver::resolve_pair(StepContext& ctx, std::uin
   Bodies& bd = ctx.bodies;
 
   Push r;
-  const double a_min_x = bd.x[a] - bd.hx[a], a_max_x = bd.x[a] + bd.hx[a];
-  const double a_min_y = bd.y[a] - bd.hy[a], a_max_y = bd.y[a] + bd.hy[a];
-  const double b_min_x = bd.x[b] - bd.hx[b], b_max_x = bd.x[b] + bd.hx[b];
-  const double b_min_y = bd.y[b] - bd.hy[b], b_max_y = bd.y[b] + bd.hy[b];
+  const double a_min_x = bd.x(a) - bd.hx(a), a_max_x = bd.x(a) + bd.hx(a);
+  const double a_min_y = bd.y(a) - bd.hy(a), a_max_y = bd.y(a) + bd.hy(a);
+  const double b_min_x = bd.x(b) - bd.hx(b), b_max_x = bd.x(b) + bd.hx(b);
+  const double b_min_y = bd.y(b) - bd.hy(b), b_max_y = bd.y(b) + bd.hy(b);
   // QUIRK: touching counts as overlapping (it then yields a zero push).
   const bool overlapping =
       !(a_min_x > b_max_x || a_max_x < b_min_x || a_min_y > b_max_y || a_max_y < b_min_y);
@@ -98,9 +98,9 @@ Seed2014Resolver::Push Seed2014Resolver::resolve_pair(StepContext& ctx, std::uin
   }
   // follow-back: addToPosition, which leaves velocity and flags alone
   auto follow = [&](std::uint32_t body, Push d) {
-    bd.x[body] += d.x;
-    bd.y[body] += d.y;
-    ctx.broadphase.note_move(body, bd.x[body], bd.y[body]);
+    bd.pos(0, body) += d.x;
+    bd.pos(1, body) += d.y;
+    ctx.broadphase.note_move(body, bd.x(body), bd.y(body));
   };
 
   const std::size_t begin = gather_near(ctx, a);

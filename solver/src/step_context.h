@@ -30,26 +30,22 @@ struct StepContext {
   std::vector<CrushRecord>& crushes;
   std::uint64_t budget;  // pair resolutions left this step
 
-  double* pos(int axis) { return axis == 0 ? bodies.x.data() : bodies.y.data(); }
   double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
-  const double* half(int axis) const { return axis == 0 ? bodies.hx.data() : bodies.hy.data(); }
 
   // Moves body i by d along axis. Under the zero rule, a velocity component that points against
   // the move stops, as the 2014 engine's updateTransform did.
   void move(std::uint32_t i, int axis, double d) {
-    pos(axis)[i] += d;
-    broadphase.note_move(i, bodies.x[i], bodies.y[i]);
-    double& v = vel(axis)[i];
-    if (def.velocity_rule == VelocityRule::kZero && d * v < 0.0) v = 0.0;
+    bodies.pos(axis, i) += d;
+    broadphase.note_move(i, bodies.x(i), bodies.y(i));
+    if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
   }
 
   // Puts body i at `target` along axis; returns how far it moved.
   double place(std::uint32_t i, int axis, double target) {
-    const double d = target - pos(axis)[i];
-    pos(axis)[i] = target;
-    broadphase.note_move(i, bodies.x[i], bodies.y[i]);
-    double& v = vel(axis)[i];
-    if (def.velocity_rule == VelocityRule::kZero && d * v < 0.0) v = 0.0;
+    const double d = target - bodies.pos(axis, i);
+    bodies.pos(axis, i) = target;
+    broadphase.note_move(i, bodies.x(i), bodies.y(i));
+    if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
     return d;
   }
 
@@ -71,8 +67,18 @@ struct Overlap {
 };
 
 inline Overlap overlap(const Bodies& b, std::uint32_t i, std::uint32_t j) {
-  return {(b.hx[i] + b.hx[j]) - std::abs(b.x[i] - b.x[j]),
-          (b.hy[i] + b.hy[j]) - std::abs(b.y[i] - b.y[j])};
+  return {(b.hx(i) + b.hx(j)) - std::abs(b.x(i) - b.x(j)),
+          (b.hy(i) + b.hy(j)) - std::abs(b.y(i) - b.y(j))};
+}
+
+// The axis of least penetration, along which a push separates them; ties go to x, as in 2014.
+inline int overlap_axis(const Overlap& o) {
+  return o.x <= o.y ? 0 : 1;
+}
+
+inline bool overlapping(const Bodies& b, std::uint32_t i, std::uint32_t j, double tolerance) {
+  const Overlap o = overlap(b, i, j);
+  return o.x > tolerance && o.y > tolerance;
 }
 
 }  // namespace chain::detail

@@ -135,8 +135,8 @@ struct World::Impl {
         b.vx[i] += def.gravity.x * b.gravity_scale[i] * dt;
         b.vy[i] += def.gravity.y * b.gravity_scale[i] * dt;
       }
-      b.x[i] += b.vx[i] * dt;
-      b.y[i] += b.vy[i] * dt;
+      b.pos(0, i) += b.vx[i] * dt;
+      b.pos(1, i) += b.vy[i] * dt;
     }
   }
 };
@@ -218,7 +218,7 @@ void World::set_velocity(BodyId id, Vec2 velocity) {
 
 Vec2 World::position(BodyId id) const {
   const std::uint32_t s = impl_->slot(id);
-  return {impl_->bodies.x[s], impl_->bodies.y[s]};
+  return {impl_->bodies.x(s), impl_->bodies.y(s)};
 }
 
 Vec2 World::velocity(BodyId id) const {
@@ -239,7 +239,7 @@ void World::read_state(std::span<const BodyId> ids, std::span<Vec2> positions,
   }
   for (std::size_t k = 0; k < ids.size(); ++k) {
     const std::uint32_t s = impl_->slot(ids[k]);
-    if (!positions.empty()) positions[k] = {b.x[s], b.y[s]};
+    if (!positions.empty()) positions[k] = {b.x(s), b.y(s)};
     if (!velocities.empty()) velocities[k] = {b.vx[s], b.vy[s]};
   }
 }

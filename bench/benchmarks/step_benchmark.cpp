@@ -1,0 +1,113 @@
+// chainbench_bench: time per step of each engine on the built-in scenes.
+//
+// Each benchmark builds its scene and engine, steps it through a warm-up (the world settles and
+// every buffer reaches its working size), then times single steps. Families are keyed by body
+// count where the scene scales, so --benchmark_format=json carries a complexity fit over it.
+// Counters: bodies, contacts per step (chain only), time per body per step, budget hits.
+#include "engine.h"
+#include "engine_spec.h"
+#include "scene_library.h"
+
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+namespace chainbench {
+namespace {
+
+struct Family {
+  std::string scene;
+  std::string size_key;    // the --set key that scales the scene, or empty
+  std::vector<int> sizes;  // values of size_key
+  std::vector<std::string> sets;
+  int warmup;
+};
+
+void step_benchmark(benchmark::State& state, const Family& family, const std::string& engine_spec) {
+  std::vector<std::string> sets = family.sets;
+  if (!family.size_key.empty())
+    sets.push_back(family.size_key + "=" + std::to_string(state.range(0)));
+  sets.push_back("steps=10000000");  // drivers and windows must outlast the benchmark
+  const Scene scene = make_scene(family.scene, sets);
+  const auto engine = make_engine(parse_engine_spec(engine_spec), scene);
+  int step = 0;
+  for (; step < family.warmup; ++step)
+    engine->step(step);
+
+  double contacts = 0.0, budget_hits = 0.0;
+  const chain::StepStats* stats = engine->chain_stats();
+  for (auto _ : state) {
+    engine->step(step++);
+    if (stats) {
+      contacts += stats->contacts;
+      budget_hits += stats->budget_hits;
+    }
+  }
+  const auto bodies = static_cast<double>(scene.bodies.size());
+  const auto iterations = static_cast<double>(state.iterations());
+  state.counters["bodies"] = bodies;
+  // Seconds per body per step (shown as ns); in JSON, seconds.
+  state.counters["per_body"] = benchmark::Counter(
+      bodies * iterations, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  if (stats) {
+    state.counters["contacts"] = contacts / iterations;
+    state.counters["budget_hits"] = budget_hits / iterations;
+  }
+  state.SetComplexityN(static_cast<benchmark::IterationCount>(bodies));
+}
+
+struct Engine {
+  const char* label;
+  const char* spec;
+  int max_bodies;  // beyond this the engine is not run (Box2D: a run must stay under a minute)
+};
+
+void register_all() {
+  const std::vector<Engine> engines = {{"chain", "chain", 2'000'000},
+                                       {"seed2014", "chain:variant=seed2014", 150'000},
+                                       {"box2d", "box2d", 150'000}};
+  const std::vector<Family> families = {
+      {"stack", "", {0}, {}, 120},
+      {"pyramid", "base", {20, 100}, {}, 60},
+      {"many_pyramids", "", {0}, {}, 60},
+      {"push_row", "n", {100, 10'000}, {}, 30},
+      {"random_pile", "n", {1'000, 10'000, 100'000, 1'000'000}, {}, 120},
+  };
+  for (const Family& family : families) {
+    for (const Engine& engine : engines) {
+      auto* b = benchmark::RegisterBenchmark(
+          (family.scene + "/" + engine.label).c_str(),
+          [family, spec = std::string(engine.spec)](benchmark::State& s) {
+            step_benchmark(s, family, spec);
+          });
+      b->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.5);
+      bool any = false;
+      for (const int size : family.sizes) {
+        SceneParams params;
+        for (const SceneParam& p : all_params(*find_recipe(family.scene)))
+          params.set(p.key, p.value);
+        if (!family.size_key.empty()) params.set(family.size_key, size);
+        if (find_recipe(family.scene)->body_count(params) >
+            static_cast<std::size_t>(engine.max_bodies))
+          continue;
+        b->Arg(size);
+        any = true;
+      }
+      if (!any) continue;
+      if (family.sizes.size() > 1) b->Complexity(benchmark::oN);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace chainbench
+
+int main(int argc, char** argv) {
+  chainbench::register_all();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -58,7 +58,8 @@ class ChainEngine final : public Engine {
       def.restitution = scene.restitution_of(b);
       ids_.push_back(world_.create_body(def));
     }
-    scratch_.resize(ids_.size());
+    positions_.resize(ids_.size());
+    velocities_.resize(ids_.size());
   }
 
   void step(int step_index) override {
@@ -80,12 +81,11 @@ class ChainEngine final : public Engine {
   }
 
   void read_state(BodyState& out) const override {
-    world_.read_state(ids_, scratch_, {});
-    for (std::size_t i = 0; i < ids_.size(); ++i)
-      out.position[i] = {scratch_[i].x, scratch_[i].y};
-    world_.read_state(ids_, {}, scratch_);
-    for (std::size_t i = 0; i < ids_.size(); ++i)
-      out.velocity[i] = {scratch_[i].x, scratch_[i].y};
+    world_.read_state(ids_, positions_, velocities_);
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+      out.position[i] = {positions_[i].x, positions_[i].y};
+      out.velocity[i] = {velocities_[i].x, velocities_[i].y};
+    }
   }
 
   const chain::StepStats* chain_stats() const override { return &world_.last_step_stats(); }
@@ -97,7 +97,7 @@ class ChainEngine final : public Engine {
   double dt_;
   std::vector<std::size_t> driven_bodies_;
   std::vector<std::uint8_t> now_, was_;  // per body: driven this step, driven last step
-  mutable std::vector<chain::Vec2> scratch_;
+  mutable std::vector<chain::Vec2> positions_, velocities_;
 };
 
 }  // namespace

@@ -22,10 +22,12 @@ OverlapScan::OverlapScan(const Scene& scene) : rotated_(scene.rotation) {
     std::nth_element(sizes.begin(), sizes.begin() + k, sizes.end());
     cell_ = std::max(2.0 * sizes[static_cast<std::size_t>(k)], 1e-9);
   }
+  large_flag_.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const double r =
         rotated_ ? std::hypot(half_[i].x, half_[i].y) : std::max(half_[i].x, half_[i].y);
     (r <= 0.5 * cell_ ? small_ : large_).push_back(i);
+    large_flag_[i] = r > 0.5 * cell_;
   }
   const std::uint64_t table = std::bit_ceil(std::max<std::uint64_t>(64, 2 * small_.size()));
   mask_ = table - 1;
@@ -42,13 +44,9 @@ std::uint64_t OverlapScan::bucket(std::int64_t cx, std::int64_t cy) const {
   return (h ^ (h >> 29)) & mask_;
 }
 
-double OverlapScan::depth(const BodyState& s, std::size_t i, std::size_t j) const {
+double OverlapScan::turned_depth(const BodyState& s, std::size_t i, std::size_t j) const {
   const Vec2d a = s.position[i], b = s.position[j];
-  if (!rotated_ || (s.angle[i] == 0.0 && s.angle[j] == 0.0)) {
-    const double ox = half_[i].x + half_[j].x - std::abs(a.x - b.x);
-    const double oy = half_[i].y + half_[j].y - std::abs(a.y - b.y);
-    return (ox > 0.0 && oy > 0.0) ? std::min(ox, oy) : 0.0;
-  }
+  if (s.angle[i] == 0.0 && s.angle[j] == 0.0) return aligned_depth(a, b, half_[i], half_[j]);
   // Separating axes of two turned boxes: each box's two edge normals.
   const double d[2] = {b.x - a.x, b.y - a.y};
   const double axes[4][2] = {{std::cos(s.angle[i]), std::sin(s.angle[i])},
@@ -108,24 +106,23 @@ double OverlapScan::deepest(const BodyState& s, std::span<double> per_body) {
     start_[b] = start_[b - 1];
   start_[0] = 0;
 
+  // The forward half of each body's 3x3 neighbourhood: every pair of small bodies once.
+  constexpr std::int64_t kForward[5][2] = {{0, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
   for (const std::size_t i : small_) {
-    for (std::int64_t dy = -1; dy <= 1; ++dy) {
-      for (std::int64_t dx = -1; dx <= 1; ++dx) {
-        const std::int64_t nx = cx_[i] + dx, ny = cy_[i] + dy;
-        const std::uint64_t b = bucket(nx, ny);
-        for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k) {
-          const std::size_t j = order_[k];
-          if (j > i && cx_[j] == nx && cy_[j] == ny) consider(i, j);
-        }
+    for (const auto& d : kForward) {
+      const std::int64_t nx = cx_[i] + d[0], ny = cy_[i] + d[1];
+      const std::uint64_t b = bucket(nx, ny);
+      for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k) {
+        const std::size_t j = order_[k];
+        if (cx_[j] != nx || cy_[j] != ny || (d[0] == 0 && d[1] == 0 && j <= i)) continue;
+        consider(i, j);
       }
     }
   }
-  for (std::size_t k = 0; k < large_.size(); ++k) {
+  for (const std::size_t l : large_) {
     for (std::size_t j = 0; j < half_.size(); ++j) {
-      if (j == large_[k]) continue;
-      const bool j_large = std::binary_search(large_.begin(), large_.end(), j);
-      if (j_large && j < large_[k]) continue;  // each large pair once
-      consider(std::min(large_[k], j), std::max(large_[k], j));
+      if (j == l || (large_flag_[j] && j < l)) continue;  // each large pair once
+      consider(std::min(l, j), std::max(l, j));
     }
   }
   return worst;

@@ -6,6 +6,8 @@
 #include "engine.h"
 #include "scene.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -20,11 +22,21 @@ class OverlapScan {
   double deepest(const BodyState& state, std::span<double> per_body);
 
  private:
-  double depth(const BodyState& s, std::size_t i, std::size_t j) const;
+  double depth(const BodyState& s, std::size_t i, std::size_t j) const {
+    if (!rotated_) return aligned_depth(s.position[i], s.position[j], half_[i], half_[j]);
+    return turned_depth(s, i, j);
+  }
+  static double aligned_depth(Vec2d a, Vec2d b, Vec2d ha, Vec2d hb) {
+    const double ox = ha.x + hb.x - std::abs(a.x - b.x);
+    const double oy = ha.y + hb.y - std::abs(a.y - b.y);
+    return (ox > 0.0 && oy > 0.0) ? std::min(ox, oy) : 0.0;
+  }
+  double turned_depth(const BodyState& s, std::size_t i, std::size_t j) const;
   std::uint64_t bucket(std::int64_t cx, std::int64_t cy) const;
 
   std::vector<Vec2d> half_;
   std::vector<std::uint8_t> dynamic_;
+  std::vector<std::uint8_t> large_flag_;
   std::vector<std::size_t> large_;  // bodies bigger than a cell: tested against all others
   std::vector<std::size_t> small_;
   double cell_ = 1.0;

@@ -86,6 +86,18 @@ std::string EngineSpec::str() const {
   return s;
 }
 
+std::string EngineSpec::short_str() const {
+  const EngineSpec defaults = parse_engine_spec(engine);
+  std::string s = engine;
+  bool first = true;
+  for (std::size_t i = 0; i < settings.size(); ++i) {
+    if (settings[i].second == defaults.settings[i].second) continue;
+    s += (first ? ":" : ",") + settings[i].first + "=" + settings[i].second;
+    first = false;
+  }
+  return s;
+}
+
 EngineSpec parse_engine_spec(std::string_view text) {
   const std::string where = "engine spec \"" + std::string(text) + "\"";
   const std::size_t colon = text.find(':');

@@ -35,6 +35,8 @@ struct EngineSpec {
   const std::string& get(std::string_view key) const;
   long long get_int(std::string_view key) const;
   std::string str() const;  // canonical: "chain:variant=modern,velocity=inelastic,..."
+  // Only the keys that differ from the engine's defaults: "chain:variant=seed2014", "box2d".
+  std::string short_str() const;
 };
 
 // Throws InputError naming the spec and the unknown engine, key or bad value.

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   int status = 0;
   chainbench::add_list_commands(app, &status);
   chainbench::add_run_command(app, &status);
+  chainbench::add_sweep_command(app, &status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -33,19 +33,9 @@ std::string yes_no(const std::optional<bool>& v) {
   return v ? (*v ? "yes" : "NO") : "-";
 }
 
-// "chain:variant=modern,velocity=inelastic,passes=4,..." is long for a table: show the keys
-// that differ from the engine's defaults.
+// The canonical spec is long for a table: show the keys that differ from the defaults.
 std::string short_name(const std::string& spec) {
-  const EngineSpec full = parse_engine_spec(spec);
-  const EngineSpec defaults = parse_engine_spec(full.engine);
-  std::string s = full.engine;
-  bool first = true;
-  for (std::size_t i = 0; i < full.settings.size(); ++i) {
-    if (full.settings[i].second == defaults.settings[i].second) continue;
-    s += (first ? ":" : ",") + full.settings[i].first + "=" + full.settings[i].second;
-    first = false;
-  }
-  return s;
+  return parse_engine_spec(spec).short_str();
 }
 
 }  // namespace
@@ -107,6 +97,14 @@ ordered_json run_json(const RunReport& r) {
   ordered_json j;
   j["schema"] = "chainbench.run/1";
   j["scene"] = {{"name", s.name}, {"bodies", s.bodies.size()}, {"steps", s.steps}, {"dt", s.dt}};
+  // Sizes and kinds in scene order, so that tools can draw the final states.
+  ordered_json half = ordered_json::array(), kinds = ordered_json::array();
+  for (const SceneBody& b : s.bodies) {
+    half.push_back({b.half_extents.x, b.half_extents.y});
+    kinds.push_back(to_string(b.kind));
+  }
+  j["scene"]["half_extents"] = std::move(half);
+  j["scene"]["kinds"] = std::move(kinds);
   if (!r.reference_spec.empty()) j["reference"] = r.reference_spec;
   auto run_entry = [&](const EngineRun& run) {
     ordered_json e;

@@ -73,6 +73,10 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
   samples.reserve(static_cast<std::size_t>(scene.steps));
   const int report_every = std::max(1, scene.steps / 100);
   for (int step = 0; step < scene.steps; ++step) {
+    if (options.stop && options.stop->load(std::memory_order_relaxed)) {
+      run.interrupted = true;
+      break;
+    }
     const auto s0 = Clock::now();
     engine->step(step);
     const double ms = ms_since(s0);

@@ -8,6 +8,7 @@
 #include "metrics.h"
 #include "scene.h"
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
@@ -50,6 +51,7 @@ struct EngineRun {
   std::uint64_t hash = 0;
   std::optional<ChainRunStats> chain;
   std::optional<ExpectResult> expect;
+  bool interrupted = false;  // stopped before its last step
 
   // Finite, in bounds, no blow-up, and no chain cut by its budget; empty when not measured.
   std::optional<bool> stable() const;
@@ -71,6 +73,8 @@ struct RunOptions {
   TraceWriter* trace = nullptr;
   // Called now and then with (steps done, steps in all): for progress bars.
   std::function<void(int, int)> progress;
+  // When set, the run stops after the current step and is marked interrupted.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOptions& options);

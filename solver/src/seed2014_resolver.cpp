@@ -19,7 +19,7 @@ void Seed2014Resolver::resolve(StepContext& ctx, const std::vector<std::uint32_t
       const std::uint32_t b = near_[k];
       if (b == a) continue;
       cut_ = false;
-      resolve_pair(ctx, a, b, kNoSlot, 0.0, false, kAnyAxis, 1);
+      if (!resolve_pair(ctx, a, b, kNoSlot, 0.0, false, kAnyAxis, 1).zero()) ++ctx.stats.contacts;
       if (cut_) ++ctx.stats.budget_hits;
     }
     near_.resize(begin);

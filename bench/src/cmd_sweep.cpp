@@ -1,0 +1,120 @@
+// chainbench sweep: error against run time over a grid of engine settings.
+#include "commands.h"
+#include "input_error.h"
+#include "progress.h"
+#include "scene_file.h"
+#include "scene_library.h"
+#include "sweep.h"
+
+#include <atomic>
+#include <csignal>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+namespace chainbench {
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+extern "C" void on_interrupt(int) {
+  g_stop.store(true);
+}
+
+struct SweepArgs {
+  std::vector<std::string> scenes, scene_files, sets, grids;
+  std::string reference = kSweepReference;
+  int steps = 0;
+  std::string json, csv;
+};
+
+std::unique_ptr<std::ofstream> open_output(const std::string& path, const char* option) {
+  if (path.empty()) return nullptr;
+  auto out = std::make_unique<std::ofstream>(path, std::ios::binary | std::ios::trunc);
+  if (!*out) throw InputError(std::string(option) + ": cannot write " + path);
+  return out;
+}
+
+int run(const SweepArgs& a) {
+  // Everything the user typed is checked before anything runs.
+  std::vector<Scene> scenes;
+  for (const std::string& name : a.scenes)
+    scenes.push_back(make_scene(name, a.sets));
+  if (!a.scene_files.empty() && !a.sets.empty() && a.scenes.empty()) {
+    throw InputError("--set applies to built-in scenes, not --scene-file");
+  }
+  for (const std::string& file : a.scene_files)
+    scenes.push_back(load_scene_file(file));
+  if (scenes.empty())
+    throw InputError("sweep: give --scene NAME or --scene-file FILE (repeatable)");
+  for (Scene& s : scenes) {
+    if (a.steps > 0) s.steps = a.steps;
+  }
+  std::vector<EngineSpec> grid;
+  for (const std::string& g : a.grids) {
+    for (EngineSpec& s : parse_grid(g))
+      grid.push_back(std::move(s));
+  }
+  if (grid.empty()) grid = default_grid();
+  parse_engine_spec(a.reference);
+  auto json_out = open_output(a.json, "--json");
+  auto csv_out = open_output(a.csv, "--csv");
+
+  g_stop = false;
+  const auto previous = std::signal(SIGINT, on_interrupt);
+  Progress progress;
+  std::vector<SweepResult> results;
+  for (const Scene& scene : scenes) {
+    SweepOptions options;
+    options.stop = &g_stop;
+    options.progress = [&](const std::string& label, int done, int total) {
+      progress.update(scene.name + ": " + label, done, total);
+    };
+    results.push_back(sweep(scene, grid, a.reference, options));
+    progress.clear();
+    if (g_stop) break;
+  }
+  std::signal(SIGINT, previous);
+
+  for (const SweepResult& r : results) {
+    print_sweep_table(std::cout, r);
+    std::cout << '\n';
+  }
+  if (json_out) *json_out << sweep_json(results).dump(2) << '\n';
+  if (csv_out) write_sweep_csv(*csv_out, results);
+  for (auto* out : {json_out.get(), csv_out.get()}) {
+    if (out && !out->flush()) throw std::runtime_error("could not finish writing an output file");
+  }
+  if (g_stop) {
+    std::cerr
+        << "chainbench: interrupted; the points measured so far are above (and in the outputs)\n";
+    return 130;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app, int* status) {
+  auto args = std::make_shared<SweepArgs>();
+  CLI::App* sweep_app =
+      app.add_subcommand("sweep", "Error against run time over a grid of engine settings");
+  sweep_app->add_option("--scene", args->scenes, "built-in scene (repeatable)");
+  sweep_app->add_option("--scene-file", args->scene_files, "scene file (repeatable)");
+  sweep_app->add_option("--set", args->sets, "KEY=VALUE for every built-in scene (repeatable)");
+  sweep_app->add_option("--grid", args->grids,
+                        "NAME:key=v1,v2;key=v3,... every combination (repeatable); "
+                        "default: one setting at a time around each engine's defaults");
+  sweep_app
+      ->add_option("--reference", args->reference,
+                   "engine the points are measured against, "
+                   "unless the scene has expectations")
+      ->capture_default_str();
+  sweep_app->add_option("--steps", args->steps, "steps to run instead of each scene's")
+      ->check(CLI::Range(1, 10'000'000));
+  sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here");
+  sweep_app->add_option("--csv", args->csv, "write one CSV row per point here");
+  sweep_app->callback([args, status] { *status = run(*args); });
+}
+
+}  // namespace chainbench

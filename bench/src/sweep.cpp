@@ -1,0 +1,213 @@
+#include "sweep.h"
+
+#include "input_error.h"
+#include "report.h"
+#include "text_table.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace chainbench {
+namespace {
+
+std::vector<std::string> split(std::string_view text, char separator) {
+  std::vector<std::string> out(1);
+  for (const char ch : text) {
+    if (ch == separator) {
+      out.emplace_back();
+    } else {
+      out.back() += ch;
+    }
+  }
+  return out;
+}
+
+PositionError expectation_error(const Scene& scene, const std::vector<Vec2d>& positions) {
+  PositionError e;
+  double sum = 0.0;
+  for (const Expectation& x : scene.expect) {
+    const Vec2d p = positions[x.body];
+    const double d = std::hypot(p.x - x.center.x, p.y - x.center.y);
+    if (!std::isfinite(d)) return {HUGE_VAL, HUGE_VAL};
+    e.max = std::max(e.max, d);
+    sum += d * d;
+  }
+  e.rms = scene.expect.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(scene.expect.size()));
+  return e;
+}
+
+}  // namespace
+
+std::vector<EngineSpec> parse_grid(std::string_view text) {
+  const std::string where = "--grid \"" + std::string(text) + "\"";
+  const std::size_t colon = text.find(':');
+  const std::string engine(text.substr(0, colon));
+  std::vector<std::pair<std::string, std::vector<std::string>>> axes;
+  if (colon != std::string_view::npos) {
+    for (const std::string& part : split(text.substr(colon + 1), ';')) {
+      const std::size_t eq = part.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == part.size()) {
+        throw InputError(where + ": \"" + part + "\" is not key=value,value,...");
+      }
+      axes.emplace_back(part.substr(0, eq), split(part.substr(eq + 1), ','));
+    }
+  }
+  std::size_t total = 1;
+  for (const auto& [key, values] : axes) {
+    total *= values.size();
+    if (total > 10'000) throw InputError(where + ": more than 10,000 combinations");
+  }
+  std::vector<EngineSpec> out;
+  for (std::size_t k = 0; k < total; ++k) {
+    std::string spec = engine;
+    std::size_t rest = k;
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      const auto& [key, values] = axes[a];
+      spec += (a == 0 ? ":" : ",") + key + "=" + values[rest % values.size()];
+      rest /= values.size();
+    }
+    out.push_back(parse_engine_spec(spec));  // validates keys and values
+  }
+  return out;
+}
+
+std::vector<EngineSpec> default_grid() {
+  std::vector<EngineSpec> grid;
+  for (const char* spec : {"chain", "chain:velocity=zero", "chain:variant=seed2014",
+                           "chain:variant=seed2014,velocity=inelastic", "chain:passes=1",
+                           "chain:passes=2", "chain:budget=4", "chain:budget=16"}) {
+    grid.push_back(parse_engine_spec(spec));
+  }
+  for (const auto& list : {"box2d:vel_iters=1,2,4,8,16", "box2d:pos_iters=0,1,8",
+                           "box2d:substeps=2,4,8", "box2d:skin=raw"}) {
+    for (EngineSpec& s : parse_grid(list))
+      grid.push_back(std::move(s));
+  }
+  return grid;
+}
+
+SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
+                  const std::string& reference, const SweepOptions& options) {
+  SweepResult result;
+  result.scene = scene.name;
+  result.bodies = static_cast<int>(scene.bodies.size());
+  result.steps = scene.steps;
+  RunOptions run_options;  // every metric
+  run_options.stop = options.stop;
+  const bool use_expect = !scene.expect.empty();
+  const int total = static_cast<int>(grid.size()) + (use_expect ? 0 : 1);
+  int done = 0;
+  auto stopped = [&] { return options.stop && options.stop->load(); };
+  auto report = [&](const std::string& label) {
+    if (options.progress) options.progress(label, done, total);
+  };
+  if (use_expect) {
+    result.reference = "expect";
+  } else {
+    const EngineSpec ref = parse_engine_spec(reference);
+    result.reference = ref.str();
+    report("reference " + ref.short_str());
+    result.reference_run = run_engine(scene, ref, run_options);
+    ++done;
+    if (result.reference_run->interrupted) {
+      result.interrupted = true;
+      return result;
+    }
+  }
+  for (const EngineSpec& spec : grid) {
+    if (stopped()) break;
+    report(spec.short_str());
+    SweepPoint point;
+    point.run = run_engine(scene, spec, run_options);
+    if (point.run.interrupted) break;  // a half-run point says nothing; keep the others
+    point.error = use_expect ? expectation_error(scene, point.run.final_positions)
+                             : position_error(scene, point.run.final_positions,
+                                              result.reference_run->final_positions);
+    result.points.push_back(std::move(point));
+    ++done;
+  }
+  result.interrupted = stopped();
+  mark_pareto(result.points);
+  return result;
+}
+
+void mark_pareto(std::vector<SweepPoint>& points) {
+  for (SweepPoint& p : points) {
+    const double t = p.run.timing.median_ms, e = p.error.rms;
+    p.pareto = std::none_of(points.begin(), points.end(), [&](const SweepPoint& q) {
+      const double qt = q.run.timing.median_ms, qe = q.error.rms;
+      return &q != &p && qt <= t && qe <= e && (qt < t || qe < e);
+    });
+  }
+}
+
+void print_sweep_table(std::ostream& out, const SweepResult& r) {
+  out << "scene " << r.scene << ": " << r.bodies << " bodies, " << r.steps
+      << " steps; error against "
+      << (r.reference == "expect" ? "the scene's expectations"
+                                  : parse_engine_spec(r.reference).short_str())
+      << (r.interrupted ? " (interrupted: the points measured so far)" : "") << "\n\n";
+  TextTable t({"engine", "ms/step", "err max m", "err rms m", "EFD/body-step m", "max pen m",
+               "stable", "pareto"});
+  auto opt = [](const std::optional<double>& v) { return v ? fmt_g(*v) : std::string("-"); };
+  for (const SweepPoint& p : r.points) {
+    const auto stable = p.run.stable();
+    t.add({parse_engine_spec(p.run.engine).short_str(), fmt_ms(p.run.timing.median_ms),
+           fmt_g(p.error.max), fmt_g(p.error.rms), opt(p.run.metrics.efd_per_body_step),
+           opt(p.run.metrics.max_penetration), stable ? (*stable ? "yes" : "NO") : "-",
+           p.pareto ? "*" : ""});
+  }
+  t.print(out);
+}
+
+nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
+  using nlohmann::ordered_json;
+  ordered_json j;
+  j["schema"] = "chainbench.sweep/1";
+  j["scenes"] = ordered_json::array();
+  for (const SweepResult& r : results) {
+    ordered_json s;
+    s["scene"] = {{"name", r.scene}, {"bodies", r.bodies}, {"steps", r.steps}};
+    s["reference"] = r.reference;
+    if (r.reference_run) s["reference_ms_per_step"] = r.reference_run->timing.median_ms;
+    s["interrupted"] = r.interrupted;
+    s["points"] = ordered_json::array();
+    for (const SweepPoint& p : r.points) {
+      const Metrics& m = p.run.metrics;
+      ordered_json point;
+      point["engine"] = p.run.engine;
+      point["ms_per_step"] = p.run.timing.median_ms;
+      point["final_position_error"] = {{"max", json_number(p.error.max)},
+                                       {"rms", json_number(p.error.rms)}};
+      point["energy_free_displacement"] =
+          m.efd_per_body_step ? json_number(*m.efd_per_body_step) : nullptr;
+      point["max_penetration"] = m.max_penetration ? json_number(*m.max_penetration) : nullptr;
+      const auto stable = p.run.stable();
+      point["stable"] = stable ? ordered_json(*stable) : ordered_json(nullptr);
+      point["pareto"] = p.pareto;
+      if (p.run.chain) point["budget_hits"] = p.run.chain->budget_hits;
+      s["points"].push_back(std::move(point));
+    }
+    j["scenes"].push_back(std::move(s));
+  }
+  return j;
+}
+
+void write_sweep_csv(std::ostream& out, const std::vector<SweepResult>& results) {
+  out << "scene,engine,reference,ms_median,err_max,err_rms,efd_per_body_step,max_penetration,"
+         "stable,pareto\n";
+  for (const SweepResult& r : results) {
+    for (const SweepPoint& p : r.points) {
+      const Metrics& m = p.run.metrics;
+      const auto stable = p.run.stable();
+      out << r.scene << ",\"" << p.run.engine << "\",\"" << r.reference << "\","
+          << fmt_g(p.run.timing.median_ms, 6) << ',' << fmt_g(p.error.max, 9) << ','
+          << fmt_g(p.error.rms, 9) << ','
+          << (m.efd_per_body_step ? fmt_g(*m.efd_per_body_step, 9) : "") << ','
+          << (m.max_penetration ? fmt_g(*m.max_penetration, 9) : "") << ','
+          << (stable ? (*stable ? "1" : "0") : "") << ',' << (p.pareto ? 1 : 0) << '\n';
+    }
+  }
+}
+
+}  // namespace chainbench

@@ -29,7 +29,8 @@ int list_scenes() {
     t.print(std::cout);
   }
   std::cout
-      << "\nEvery scene also takes dt (1/60 s), friction (0), restitution (0) and rotation (0).\n";
+      << "\nEvery scene also takes dt (1/60 s), friction (0), restitution (0), rotation (0) and\n"
+         "offset (0 m: moves the whole scene along x and y).\n";
   return 0;
 }
 

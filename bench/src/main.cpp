@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   chainbench::add_list_commands(app, &status);
   chainbench::add_run_command(app, &status);
   chainbench::add_sweep_command(app, &status);
+  chainbench::add_stress_command(app, &status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -27,7 +27,7 @@ double SceneParams::get(const std::string& key) const {
 const std::vector<SceneRecipe>& scene_library() {
   static const std::vector<SceneRecipe> library = [] {
     std::vector<SceneRecipe> all;
-    for (auto family : {stacking_scenes, pushing_scenes, seed2014_scenes}) {
+    for (auto family : {stacking_scenes, pushing_scenes, seed2014_scenes, stress_scenes}) {
       for (SceneRecipe& r : family())
         all.push_back(std::move(r));
     }
@@ -52,6 +52,8 @@ std::vector<SceneParam> all_params(const SceneRecipe& recipe) {
       {"friction", 0.0, 0, limits::kMaxFriction, false, "friction of every body (chain has none)"});
   params.push_back({"restitution", 0.0, 0, 1, false, "restitution of every body"});
   params.push_back({"rotation", 0.0, 0, 1, true, "1: let Box2D rotate bodies (chain never does)"});
+  params.push_back(
+      {"offset", 0.0, -1e7, 1e7, false, "move the whole scene this far along x and y, m"});
   return params;
 }
 
@@ -93,11 +95,18 @@ Scene make_scene(std::string_view name, const std::vector<std::string>& sets) {
                      std::to_string(limits::kMaxBodies));
   }
   Scene scene = recipe->build(values);
+  scene.description = recipe->description;
   scene.steps = values.count("steps");
   scene.dt = values.get("dt");
   scene.friction = values.get("friction");
   scene.restitution = values.get("restitution");
   scene.rotation = values.count("rotation") != 0;
+  if (const double offset = values.get("offset"); offset != 0.0) {
+    for (SceneBody& b : scene.bodies)
+      b.center.x += offset, b.center.y += offset;
+    for (Expectation& e : scene.expect)
+      e.center.x += offset, e.center.y += offset;
+  }
   return scene;
 }
 

@@ -43,8 +43,8 @@ struct SceneRecipe {
 
 const std::vector<SceneRecipe>& scene_library();
 const SceneRecipe* find_recipe(std::string_view name);
-// The recipe's own parameters, then steps, dt (1/60), friction (0), restitution (0) and
-// rotation (0), which every scene takes.
+// The recipe's own parameters, then steps, dt (1/60), friction (0), restitution (0), rotation
+// (0) and offset (0: moves the whole scene that far along x and y), which every scene takes.
 std::vector<SceneParam> all_params(const SceneRecipe& recipe);
 
 // Builds scene `name` with `sets` ("key=value") applied. Unknown scenes and keys, values that are
@@ -67,5 +67,6 @@ std::string label(std::string_view prefix, int a, int b);
 std::vector<SceneRecipe> stacking_scenes();
 std::vector<SceneRecipe> pushing_scenes();
 std::vector<SceneRecipe> seed2014_scenes();
+std::vector<SceneRecipe> stress_scenes();
 
 }  // namespace chainbench

@@ -1,0 +1,91 @@
+// chainbench stress: the stiff and extreme cases, in every engine, with verdicts.
+#include "commands.h"
+#include "input_error.h"
+#include "progress.h"
+#include "stress.h"
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <regex>
+
+namespace chainbench {
+namespace {
+
+struct StressArgs {
+  bool quick = false;
+  std::string engines = "chain,chain:variant=seed2014,box2d";
+  std::string filter;
+  double timeout = 120.0;
+  std::string json;
+};
+
+int run(const StressArgs& a) {
+  const std::vector<EngineSpec> engines = parse_engine_list(a.engines);
+  std::regex filter;
+  try {
+    filter = std::regex(a.filter.empty() ? ".*" : a.filter);
+  } catch (const std::regex_error& e) {
+    throw InputError("--filter: not a regular expression: " + std::string(e.what()));
+  }
+  std::unique_ptr<std::ofstream> json_out;
+  if (!a.json.empty()) {
+    json_out = std::make_unique<std::ofstream>(a.json, std::ios::binary | std::ios::trunc);
+    if (!*json_out) throw InputError("--json: cannot write " + a.json);
+  }
+  std::vector<StressCase> cases;
+  for (const StressCase& c : stress_cases()) {
+    if ((!a.quick || c.quick) && std::regex_search(c.label(), filter)) cases.push_back(c);
+  }
+  if (cases.empty()) throw InputError("stress: no case matches --filter \"" + a.filter + "\"");
+
+  const std::string modern = parse_engine_spec("chain").str();
+  Progress progress;
+  std::vector<StressVerdict> verdicts;
+  int done = 0;
+  const int total = static_cast<int>(cases.size() * engines.size());
+  for (const StressCase& c : cases) {
+    for (const EngineSpec& e : engines) {
+      progress.update(c.label() + " / " + e.short_str(), done++, total);
+      verdicts.push_back(run_stress_case(c, e, a.timeout));
+    }
+  }
+  progress.clear();
+  print_stress_table(std::cout, verdicts);
+  if (json_out) {
+    *json_out << stress_json(verdicts, a.quick).dump(2) << '\n';
+    if (!json_out->flush()) throw std::runtime_error("could not finish writing " + a.json);
+  }
+  int failures = 0;
+  for (const StressVerdict& v : verdicts)
+    failures += v.engine == modern && v.fatal();
+  if (failures > 0) {
+    std::cerr << "chainbench: the modern chaining solver failed " << failures
+              << " stress case(s)\n";
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_stress_command(CLI::App& app, int* status) {
+  auto args = std::make_shared<StressArgs>();
+  CLI::App* s = app.add_subcommand(
+      "stress", "The stiff and extreme cases, each in every engine, with verdicts");
+  s->add_flag("--quick", args->quick, "the CI subset: one case of each kind, small");
+  s->add_option("--engines", args->engines, "engine specs, comma separated")->capture_default_str();
+  s->add_option("--filter", args->filter,
+                "run only the cases whose label matches this regular expression");
+  s->add_option("--timeout", args->timeout, "seconds a case may take before it counts as a hang")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 86400.0));
+  s->add_option("--json", args->json, "write the chainbench.stress/1 JSON here");
+  s->footer(
+      "Exit status 1 when the modern solver (chain) is non-finite, out of bounds, blows up, hangs "
+      "or "
+      "crashes on any case; other engines' failures are reported only.");
+  s->callback([args, status] { *status = run(*args); });
+}
+
+}  // namespace chainbench

@@ -44,7 +44,8 @@ class Reader {
   // Reports keys of `object` that are not in `allowed`.
   void only_keys(const json& object, const std::string& path,
                  std::initializer_list<const char*> allowed) {
-    for (const auto& [key, value] : object.items()) {
+    for (const auto& item : object.items()) {
+      const std::string& key = item.key();
       if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; })) {
         std::string list;
         for (const char* a : allowed)

@@ -115,6 +115,20 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCall{"run --scene-file /nonexistent.json",
                               "/nonexistent.json: cannot open"},
                       BadCall{"run --scene stack --json /nonexistent/dir/out.json", "cannot write"},
+                      BadCall{"run --scene stack --set n=abc", "\"abc\" is not a number"},
+                      BadCall{"run --scene stack --set n=2.5", "whole number"},
+                      BadCall{"run --scene stack --set size=NaN", "not a finite number"},
+                      BadCall{"run --scene stack --set size=1e999", "not a finite number"},
+                      BadCall{"run --scene stack --set size=0", "out of range [0.01, 100]"},
+                      BadCall{"run --scene stack --set n", "expected KEY=VALUE"},
+                      BadCall{"run --scene stack --engines chain:passes=abc", "not a number"},
+                      BadCall{"run --scene stack --engines chain:passes=1e99", "out of range"},
+                      BadCall{"run --scene stack --engines chain:variant=1999", "modern|seed2014"},
+                      BadCall{"run --scene stack --engines ,", "empty entry"},
+                      BadCall{"stress --filter [", "not a regular expression"},
+                      BadCall{"stress --filter nothing-matches-this", "no case matches"},
+                      BadCall{"stress --timeout 0", "--timeout"},
+                      BadCall{"sweep --scene stack --grid foo=1", "unknown engine"},
                       BadCall{"frobnicate", "subcommand"}),
     [](const auto& info) { return "Case" + std::to_string(info.index); });
 
@@ -149,6 +163,52 @@ TEST(Cli, ListAndEnginesDescribeWhatCanRun) {
       << engines.out;
   EXPECT_NE(engines.out.find("vel_iters"), std::string::npos);
   EXPECT_EQ(chainbench("--help").status, 0);
+}
+
+// The example scene files load, run in every default engine, and the modern solver lands where
+// each file expects (push_two: the pusher's speed carries the row; corridor: the crates end
+// against the wall; lift: two boxes ride a lift up).
+TEST(Cli, ExampleSceneFilesRunAndModernChainingMeetsTheirExpectations) {
+  for (const char* name : {"push_two", "corridor", "lift"}) {
+    SCOPED_TRACE(name);
+    const std::string json_path = temp(std::string(name) + ".json");
+    const Result r = chainbench(std::string("run --scene-file ") + CHAINBENCH_SCENES + "/" + name +
+                                ".json --json " + json_path);
+    ASSERT_EQ(r.status, 0) << r.out;
+    nlohmann::json j;
+    std::ifstream(json_path) >> j;
+    ASSERT_EQ(j["runs"].size(), 3u);
+    for (const auto& run : j["runs"])
+      EXPECT_TRUE(run["metrics"]["stable"].get<bool>());
+    const auto& modern = j["runs"][0];
+    ASSERT_EQ(modern["label"], "chain");
+    ASSERT_TRUE(modern.contains("expect"));
+    EXPECT_TRUE(modern["expect"]["pass"].get<bool>()) << modern["expect"];
+  }
+}
+
+TEST(Cli, QuickStressWritesAVerdictForEveryCaseAndEngine) {
+  const std::string json_path = temp("stress.json");
+  const Result r =
+      chainbench("stress --quick --filter \"projectile|static_squeeze\" --json " + json_path);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("verdict"), std::string::npos);
+  nlohmann::json j;
+  std::ifstream(json_path) >> j;
+  EXPECT_EQ(j["schema"], "chainbench.stress/1");
+  EXPECT_TRUE(j["quick"].get<bool>());
+  ASSERT_EQ(j["cases"].size(), 2u * 3u);  // two cases, three default engines
+  for (const auto& c : j["cases"]) {
+    SCOPED_TRACE(c["case"].get<std::string>() + " " + c["engine"].get<std::string>());
+    for (const char* key :
+         {"case", "group", "engine", "label", "verdict", "stable", "fatal", "finite", "in_bounds",
+          "blow_up", "budget_hits", "crush_events", "max_penetration", "ms_per_step", "wall_s"}) {
+      EXPECT_TRUE(c.contains(key)) << key;
+    }
+    EXPECT_FALSE(c["fatal"].get<bool>());
+  }
+  // The box between floor and ceiling is crushed every step, which the chain engines count.
+  EXPECT_GT(j["cases"][3]["crush_events"].get<int>(), 0) << j["cases"][3]["case"];
 }
 
 }  // namespace

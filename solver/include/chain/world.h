@@ -88,7 +88,8 @@ class World {
                   std::span<Vec2> velocities) const;
 
   // Advances by dt seconds (finite, > 0; throws std::invalid_argument otherwise).
-  // Deterministic: the same bodies, in any creation order, give the same bits.
+  // Deterministic: the same bodies, in any creation order, give the same bits (modern variant;
+  // two identical bodies in the same place may trade places, as nothing tells them apart).
   void step(double dt);
 
   const StepStats& last_step_stats() const;

@@ -97,6 +97,7 @@ ordered_json run_json(const RunReport& r) {
   ordered_json j;
   j["schema"] = "chainbench.run/1";
   j["scene"] = {{"name", s.name}, {"bodies", s.bodies.size()}, {"steps", s.steps}, {"dt", s.dt}};
+  if (!s.description.empty()) j["scene"]["description"] = s.description;
   // Sizes and kinds in scene order, so that tools can draw the final states.
   ordered_json half = ordered_json::array(), kinds = ordered_json::array();
   for (const SceneBody& b : s.bodies) {
@@ -109,6 +110,7 @@ ordered_json run_json(const RunReport& r) {
   auto run_entry = [&](const EngineRun& run) {
     ordered_json e;
     e["engine"] = run.engine;
+    e["label"] = short_name(run.engine);
     ordered_json positions = ordered_json::array();
     for (const Vec2d& p : run.final_positions)
       positions.push_back({json_number(p.x), json_number(p.y)});

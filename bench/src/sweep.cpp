@@ -169,6 +169,8 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
     ordered_json s;
     s["scene"] = {{"name", r.scene}, {"bodies", r.bodies}, {"steps", r.steps}};
     s["reference"] = r.reference;
+    s["reference_label"] =
+        r.reference == "expect" ? r.reference : parse_engine_spec(r.reference).short_str();
     if (r.reference_run) s["reference_ms_per_step"] = r.reference_run->timing.median_ms;
     s["interrupted"] = r.interrupted;
     s["points"] = ordered_json::array();
@@ -176,6 +178,7 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
       const Metrics& m = p.run.metrics;
       ordered_json point;
       point["engine"] = p.run.engine;
+      point["label"] = parse_engine_spec(p.run.engine).short_str();
       point["ms_per_step"] = p.run.timing.median_ms;
       point["final_position_error"] = {{"max", json_number(p.error.max)},
                                        {"rms", json_number(p.error.rms)}};

@@ -1,0 +1,1 @@
+"""The plots of scripts/plot.py, one module per subcommand, and what they share (common)."""

@@ -1,0 +1,172 @@
+"""What every plot of scripts/plot.py shares: the InputError that bad input raises, the late
+matplotlib import, writing a figure, reading JSON and numbers, the engine specs (parsed, shortened
+and labelled as chainbench shows them), one marker and colour per engine family, and the notes and
+point labels written on the axes.
+"""
+import itertools
+import json
+import math
+import re
+
+# Engine defaults as bench/src/engine_spec.cpp has them, to shorten specs the way chainbench does.
+DEFAULTS = {"chain": {"variant": "modern", "velocity": "inelastic", "passes": "4", "budget": "64",
+                      "depth": "2048"},
+            "box2d": {"vel_iters": "8", "pos_iters": "3", "substeps": "1", "skin": "compensate",
+                      "warm": "1"}}
+# Marker and colour of each engine family, the same in every plot; other engines take spare colours.
+# No red among them: red crosses mark the unstable points of the sweep plots.
+FAMILY_STYLE = {"chain (modern)": ("o", "tab:blue"), "chain (seed2014)": ("s", "tab:orange"),
+                "box2d": ("^", "tab:green")}
+SPARE_COLOURS = ("tab:purple", "tab:brown", "tab:pink", "tab:olive", "tab:cyan")
+LINE_STYLES = ("-", "--", ":", "-.")
+
+
+class InputError(Exception):
+    """Bad input, "FILE: reason": main() prints it on one line and exits with status 2."""
+
+
+def pyplot():
+    """matplotlib.pyplot on the Agg backend (imported late, so that bad input is reported fast)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def save(fig, out_dir, stem, svg):
+    """Writes fig as DIR/stem.png (and DIR/stem.svg), prints each path and closes the figure."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for path in [out_dir / f"{stem}.png"] + ([out_dir / f"{stem}.svg"] if svg else []):
+        fig.savefig(path, dpi=110, bbox_inches="tight")
+        print(path)
+    pyplot().close(fig)
+
+
+def file_stem(name):
+    """A scene or trace name made safe for a file name."""
+    return re.sub(r"[^A-Za-z0-9_.-]+", "_", str(name)).strip("._") or "unnamed"
+
+
+def load_json(path, schema=None):
+    """The JSON object in path; with schema, one whose "schema" field is that."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+    except OSError as e:
+        raise InputError(f"{path}: cannot read: {e.strerror}") from None
+    except ValueError as e:  # not UTF-8 text, or not JSON
+        raise InputError(f"{path}: not valid JSON ({e})") from None
+    if not isinstance(data, dict):
+        raise InputError(f"{path}: not a JSON object")
+    if schema and data.get("schema") != schema:
+        raise InputError(f"{path}: schema is {data.get('schema')!r}, expected {schema!r}")
+    return data
+
+
+def number(value):
+    """value as a finite float, or None (null, non-finite, not a number)."""
+    ok = isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+    return float(value) if ok else None
+
+
+def parse_spec(spec):
+    """(engine name, {key: value}) of a spec such as "box2d:vel_iters=8,pos_iters=3"."""
+    name, _, rest = str(spec).partition(":")
+    return name, dict(kv.partition("=")[::2] for kv in rest.split(",") if kv)
+
+
+def family(spec):
+    """The engine family of a spec: "chain (modern)", "chain (seed2014)", "box2d" or its name."""
+    name, settings = parse_spec(spec)
+    return f"chain ({settings.get('variant', 'modern')})" if name == "chain" else name
+
+
+def short_name(spec):
+    """A spec with only the keys that differ from the defaults, as chainbench's tables show it."""
+    name, settings = parse_spec(spec)
+    defaults = dict(DEFAULTS.get(name, {}))
+    if name == "chain" and settings.get("variant") == "seed2014":
+        defaults["velocity"] = "zero"
+    changed = [f"{k}={v}" for k, v in settings.items() if defaults.get(k) != v]
+    return name + (":" + ",".join(changed) if changed else "")
+
+
+def point_label(spec):
+    """A sweep point's settings in a few characters: box2d vel/pos/sub iterations, chain velocity
+    rule, passes and budget; the other keys only when not at their default."""
+    name, s = parse_spec(spec)
+    if name == "box2d":
+        base = "/".join(s.get(k, "?") for k in ("vel_iters", "pos_iters", "substeps"))
+    elif name == "chain":
+        velocity = {"inelastic": "inel"}.get(s.get("velocity"), s.get("velocity", "?"))
+        base = f"{velocity} p{s.get('passes', '?')} b{s.get('budget', '?')}"
+    else:
+        return ",".join(f"{k}={v}" for k, v in s.items())
+    others = {"box2d": ("skin", "warm"), "chain": ("depth",)}[name]
+    return " ".join([base] + [f"{k}={s[k]}" for k in others if s.get(k, DEFAULTS[name][k])
+                              != DEFAULTS[name][k]])
+
+
+def styles(keys, family_of=family):
+    """{key: (marker, colour)}: its family's for the first key of each known family, a spare
+    colour (and a diamond) for the others, so that every key has a colour of its own."""
+    out, used = {}, set()
+    for key in keys:
+        marker, colour = FAMILY_STYLE.get(family_of(key), ("D", None))
+        if colour is None or colour in used:
+            colour = next((c for c in SPARE_COLOURS if c not in used), "black")
+        out[key] = (marker, colour)
+        used.add(colour)
+    return out
+
+
+def note_below(ax, lines):
+    """Writes notes in small grey type under the x-axis label of ax."""
+    if lines:
+        ax.annotate("\n".join(lines), (0, 0), xycoords="axes fraction", xytext=(0, -38),
+                    textcoords="offset points", va="top", fontsize=8, color="0.3")
+
+
+def place_labels(ax, labels):
+    """Writes each (x, y, text, colour) label in 7 pt beside its point, once the layout is final.
+    Labels of one colour on points less than 3 pixels apart are merged. Each label takes the
+    nearest of rings of offsets that covers no marker and no earlier label and stays in the axes
+    (else the least bad one); a label set away from its point gets a thin leader line."""
+    from matplotlib.transforms import Bbox
+    renderer = ax.figure.canvas.get_renderer()
+    merged = []  # [pixel x, pixel y, x, y, texts, colour]
+    for x, y, text, colour in labels:
+        px, py = ax.transData.transform((x, y))
+        near = [m for m in merged if m[5] == colour and abs(m[0] - px) < 3 and abs(m[1] - py) < 3]
+        if not near:
+            merged.append([px, py, x, y, [text], colour])
+        elif text not in near[0][4]:
+            near[0][4].append(text)
+    frame, taken = ax.get_window_extent(renderer), [Bbox.from_bounds(m[0] - 4, m[1] - 4, 8, 8)
+                                                    for m in merged]
+
+    def put(ann, r, dx, dy):  # moves the label, returns (how bad it is there, its box)
+        ann.set_position((dx * r, dy * r))
+        ann.set_horizontalalignment("left" if dx > 0 else "right" if dx < 0 else "center")
+        ann.set_verticalalignment("bottom" if dy > 0 else "top" if dy < 0 else "center")
+        box = ann.get_window_extent(renderer)
+        hits = [h for h in (Bbox.intersection(box, t) for t in taken) if h is not None]
+        outside = not (frame.x0 <= box.x0 <= box.x1 <= frame.x1
+                       and frame.y0 <= box.y0 <= box.y1 <= frame.y1)
+        return sum(h.width * h.height for h in hits) + 1e6 * outside, box
+
+    ring = ((1, 1), (1, -1), (-1, 1), (-1, -1), (0, 1.2), (0, -1.2), (1.2, 0), (-1.2, 0))
+    for _, _, x, y, texts, colour in merged:
+        text = "\n".join(texts if len(texts) <= 6 else texts[:5] + [f"+{len(texts) - 5} more"])
+        ann = ax.annotate(text, (x, y), xytext=(0, 0), textcoords="offset points", fontsize=7,
+                          color=colour, linespacing=1.0)
+        best = (math.inf,)
+        for r, (dx, dy) in itertools.product((4, 12, 22, 34, 48), ring):
+            best = min(best, (put(ann, r, dx, dy)[0], r, dx, dy))
+            if best[0] == 0:
+                break
+        _, r, dx, dy = best
+        taken.append(put(ann, r, dx, dy)[1])
+        if r > 4:
+            ax.annotate("", (x, y), xytext=(dx * r, dy * r), textcoords="offset points",
+                        arrowprops=dict(arrowstyle="-", color=colour, lw=0.5, shrinkB=3))

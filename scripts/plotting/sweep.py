@@ -1,0 +1,101 @@
+"""The sweep plot: for each scene of a chainbench.sweep/1 JSON, the final-position error of every
+engine setting against its time per step, with the Pareto front and the reference engine's time.
+"""
+import math
+import sys
+
+from .common import (InputError, family, file_stem, load_json, note_below, number, parse_spec,
+                     place_labels, point_label, pyplot, save, short_name, styles)
+
+# What the point labels (common.point_label) show, per engine, for the note under each plot.
+LABEL_NOTES = {"box2d": "box2d vel/pos/sub iterations",
+               "chain": "chain velocity rule, p = passes, b = budget"}
+
+
+def load_sweep(path):
+    """The scenes of a chainbench.sweep/1 JSON, each a dict with name, bodies, steps, reference,
+    reference_ms, interrupted and points: dicts of engine, ms, rms (None if not finite), stable
+    and pareto."""
+    data = load_json(path, "chainbench.sweep/1")
+    if not isinstance(data.get("scenes"), list) or not data["scenes"]:
+        raise InputError(f"{path}: no scenes")
+    return [{"name": str(s["scene"]["name"]), "bodies": s["scene"].get("bodies", "?"),
+             "steps": s["scene"].get("steps", "?"), "reference": s.get("reference"),
+             "reference_ms": number(s.get("reference_ms_per_step")),
+             "interrupted": s.get("interrupted") is True,
+             "points": [{"engine": str(p["engine"]), "ms": number(p["ms_per_step"]),
+                         "rms": number(p["final_position_error"]["rms"]),
+                         "stable": p.get("stable"), "pareto": p.get("pareto") is True}
+                        for p in s["points"]]}
+            for s in data["scenes"]]
+
+
+def plot_sweep(path, scenes, out_dir, svg):
+    """Per scene: final-position RMS error against ms/step, log-log, one series per engine family,
+    each point labelled with its settings, the Pareto front as a step line and the reference
+    engine's time per step as a dotted vertical line. Unstable points are crossed in red. Scenes
+    whose names make the same file stem are written as sweep_STEM, sweep_STEM_2, sweep_STEM_3..."""
+    for scene in scenes:
+        scene["usable"] = [p for p in scene["points"]
+                           if p["ms"] and p["ms"] > 0 and p["rms"] is not None]
+    if not any(scene["usable"] for scene in scenes):
+        raise InputError(f"{path}: no scene has a point with both a time and an error")
+    plt, stems = pyplot(), set()  # stems written, lower case (some file systems ignore case)
+    for scene in scenes:
+        name, usable, ref, ref_ms = (scene[k] for k in ("name", "usable", "reference",
+                                                        "reference_ms"))
+        if not usable:
+            print(f"plot.py: {path}: scene {name!r} has no point with a time and an error; skipped",
+                  file=sys.stderr)
+            continue
+        engines = {parse_spec(p["engine"])[0] for p in usable}
+        legend = [text for engine, text in LABEL_NOTES.items() if engine in engines]
+        notes = ["point labels: " + "; ".join(legend)] if legend else []
+        if len(usable) < len(scene["points"]):
+            notes.append("not drawn, no time or error: " + ", ".join(
+                short_name(p["engine"]) for p in scene["points"] if p not in usable))
+        positive = [p["rms"] for p in usable if p["rms"] > 0]
+        floor = 10.0 ** math.floor(math.log10(min(positive) / 10)) if positive else 1e-12
+        if len(positive) < len(usable):
+            notes.append(f"hollow markers: error 0, drawn at {floor:g} m (a log axis has no 0)")
+        for p in usable:
+            p["y"] = max(p["rms"], floor)
+        fig, ax = plt.subplots(figsize=(10, 6.5))
+        fig.subplots_adjust(left=0.09, right=0.74, top=0.88, bottom=0.16)
+        families, labels = {}, []
+        for p in usable:
+            families.setdefault(family(p["engine"]), []).append(p)
+        for fam, (marker, colour) in styles(families, family_of=str).items():
+            pts = families[fam]
+            ax.scatter([p["ms"] for p in pts], [p["y"] for p in pts], marker=marker, s=36, zorder=3,
+                       facecolors=[colour if p["rms"] > 0 else "none" for p in pts],
+                       edgecolors=colour, label=f"{fam} ({len(pts)})")
+            labels += [(p["ms"], p["y"], point_label(p["engine"]), colour) for p in pts]
+        unstable = [(p["ms"], p["y"]) for p in usable if p["stable"] is False]
+        if unstable:
+            ax.scatter(*zip(*unstable), marker="x", s=70, color="red", zorder=4,
+                       label="unstable (blow-up or budget hits)")
+        front = sorted((p["ms"], p["y"]) for p in usable if p["pareto"])
+        if front:
+            ax.step(*zip(*front), where="post", color="0.2", lw=1, alpha=0.7, zorder=2,
+                    label="Pareto front")
+        if ref_ms and ref_ms > 0:
+            ax.axvline(ref_ms, color="0.5", ls=":", lw=1, label=f"reference: {ref_ms:.3g} ms/step")
+        ax.set(xscale="log", yscale="log", xlabel="time per step (ms, median, log scale)",
+               ylabel="final-position error, RMS over dynamic bodies (m, log scale)")
+        ax.grid(True, alpha=0.3)
+        against = ("the scene's expected final centres" if ref == "expect"
+                   else f"reference {short_name(ref)}" if ref else "an unnamed reference")
+        ax.set_title(f"{name}: {scene['bodies']} bodies, {scene['steps']} steps"
+                     f"{' (interrupted)' * scene['interrupted']}\nerror against {against}",
+                     fontsize=11)
+        ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1), fontsize=8, title="engine (points)")
+        note_below(ax, notes)
+        place_labels(ax, sorted(labels))
+        stem = base = f"sweep_{file_stem(name)}"
+        n = 1
+        while stem.lower() in stems:
+            n += 1
+            stem = f"{base}_{n}"
+        stems.add(stem.lower())
+        save(fig, out_dir, stem, svg)

@@ -1,0 +1,86 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds, runs the default comparison suite and writes results/:
+#   results/runs/<scene>.{json,csv}    chainbench run, every engine, every default scene and
+#                                      every example scene file in bench/scenes/
+#   results/stress.{json,txt}          chainbench stress, the full matrix
+#   results/traces/<scene>.csv         per-step traces of a few small scenes
+#   results/sweep.{json,csv}           a small error-against-run-time sweep
+#   results/bench.json                 a quick Google Benchmark subset (scaling)
+#   results/plots/*.png                the plots (scripts/plot.py)
+#   results/report.md                  everything above in one page
+# Takes a few minutes on a 2-core machine. Options: --no-bench skips the benchmark subset.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bench=1
+for arg in "$@"; do
+  case "$arg" in
+    --no-bench) bench=0 ;;
+    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    *) echo "usage: $0 [--no-bench]" >&2; exit 2 ;;
+  esac
+done
+
+scripts/deps.sh run
+cmake --preset release
+cmake --build --preset release
+
+cb=build/bin/chainbench
+out=results
+rm -rf "$out/runs" "$out/traces" "$out/plots"
+mkdir -p "$out/runs" "$out/traces" "$out/plots"
+start=$SECONDS
+say() { echo "run.sh: $* ($((SECONDS - start)) s)" >&2; }
+
+scenes=(stack pyramid many_pyramids mass_ratio_stack heavy_on_light overlap_recovery random_pile
+        push_row push_into_wall push_stack squeeze seed_stack seed_squeeze seed_falling_row)
+traced=(stack overlap_recovery push_stack squeeze seed_squeeze)
+for scene in "${scenes[@]}"; do
+  say "run $scene"
+  trace=()
+  for t in "${traced[@]}"; do
+    [[ "$t" == "$scene" ]] && trace=(--trace "$out/traces/$scene.csv")
+  done
+  "$cb" run --scene "$scene" --json "$out/runs/$scene.json" --csv "$out/runs/$scene.csv" "${trace[@]}" \
+    > "$out/runs/$scene.txt"
+done
+
+for file in bench/scenes/*.json; do
+  scene=$(basename "$file" .json)
+  say "run $file"
+  "$cb" run --scene-file "$file" --json "$out/runs/$scene.json" --csv "$out/runs/$scene.csv" \
+    > "$out/runs/$scene.txt"
+done
+
+say "stress"
+stress_status=0
+"$cb" stress --json "$out/stress.json" > "$out/stress.txt" || stress_status=$?
+
+say "sweep"
+"$cb" sweep --scene stack --scene push_row --scene pyramid --scene heavy_on_light \
+  --json "$out/sweep.json" --csv "$out/sweep.csv" > "$out/sweep.txt"
+
+if [[ $bench -eq 1 ]]; then
+  say "benchmark subset"
+  build/bin/chainbench_bench \
+    --benchmark_filter='^(pyramid/(chain|box2d)/|random_pile/(chain|box2d)/(1000|10000|100000)/|harness)' \
+    --benchmark_out="$out/bench.json" --benchmark_out_format=json > "$out/bench.txt"
+fi
+
+say "plots"
+py=/usr/bin/python3
+for scene in "${scenes[@]}"; do
+  "$py" scripts/plot.py states "$out/runs/$scene.json" --out "$out/plots" > /dev/null
+done
+for scene in "${traced[@]}"; do
+  "$py" scripts/plot.py trace "$out/traces/$scene.csv" --name "$scene" --out "$out/plots" > /dev/null
+done
+"$py" scripts/plot.py sweep "$out/sweep.json" --out "$out/plots" > /dev/null
+[[ -f "$out/bench.json" ]] && "$py" scripts/plot.py scaling "$out/bench.json" --out "$out/plots" > /dev/null
+
+"$py" scripts/report.py "$out"
+say "done: $out/report.md"
+if [[ $stress_status -ne 0 ]]; then
+  echo "run.sh: chainbench stress failed (status $stress_status): see $out/stress.txt" >&2
+  exit "$stress_status"
+fi

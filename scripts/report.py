@@ -31,6 +31,13 @@ def load(path):
         return json.load(f)
 
 
+def expect_cell(expect):
+    """pass, or FAIL with the largest distance from an expected centre."""
+    if not expect:
+        return "-"
+    return f"pass ({g(expect['max_error'])} m)" if expect["pass"] else f"**FAIL** ({g(expect['max_error'])} m)"
+
+
 def scene_section(run, plots_dir):
     scene = run["scene"]
     name = scene["name"]
@@ -39,10 +46,12 @@ def scene_section(run, plots_dir):
         lines += [scene["description"] + f"; {scene['bodies']} bodies, {scene['steps']} steps.", ""]
     errors = {c["engine"]: c["final_position_error"] for c in run.get("comparison", [])}
     speedups = {c["engine"]: c.get("speedup") for c in run.get("comparison", [])}
+    runs = run["runs"] + ([run["reference_run"]] if "reference_run" in run else [])
+    has_expect = any(r.get("expect") for r in runs)
     lines += ["| engine | ms/step | x ref | err max m | err rms m | EFD/body-step m | max pen m | stable | "
-              "resolves/step | depth | budget hits | crushes |",
-              "|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|"]
-    for r in run["runs"] + ([run["reference_run"]] if "reference_run" in run else []):
+              "resolves/step | depth | budget hits | crushes |" + (" expect |" if has_expect else ""),
+              "|---|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|" + ("---|" if has_expect else "")]
+    for r in runs:
         m, c = r.get("metrics", {}), r.get("chain_stats")
         e = errors.get(r["engine"])
         is_ref = r["engine"] == run.get("reference")
@@ -53,7 +62,8 @@ def scene_section(run, plots_dir):
             f"{g(e['max']) if e else ('0' if is_ref else '-')} | {g(e['rms']) if e else ('0' if is_ref else '-')} | "
             f"{g(efd)} | {g(m.get('max_penetration'))} | {g(m.get('stable'))} | "
             f"{g(c['resolve_calls'], 4) if c else '-'} | {c['max_depth'] if c else '-'} | "
-            f"{c['budget_hits'] if c else '-'} | {c['crush_events'] if c else '-'} |")
+            f"{c['budget_hits'] if c else '-'} | {c['crush_events'] if c else '-'} |" +
+            (f" {expect_cell(r.get('expect'))} |" if has_expect else ""))
     lines.append("")
     for plot, caption in ((f"states_{name}.png", "final states of every engine, drawn over each other"),
                           (f"trace_{name}.png", "energy-free displacement and penetration over time")):

@@ -57,7 +57,7 @@ stress_status=0
 "$cb" stress --json "$out/stress.json" > "$out/stress.txt" || stress_status=$?
 
 say "sweep"
-"$cb" sweep --scene stack --scene push_row --scene pyramid --scene heavy_on_light \
+"$cb" sweep --scene stack --scene pyramid --scene heavy_on_light --scene push_row --scene push_stack \
   --json "$out/sweep.json" --csv "$out/sweep.csv" > "$out/sweep.txt"
 
 if [[ $bench -eq 1 ]]; then

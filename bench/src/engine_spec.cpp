@@ -87,11 +87,17 @@ std::string EngineSpec::str() const {
 }
 
 std::string EngineSpec::short_str() const {
+  // A default can depend on the variant (each chain variant has its own velocity rule), so keys
+  // after the variant are compared with that variant's defaults: the short form must parse back to
+  // this very spec.
   const EngineSpec defaults = parse_engine_spec(engine);
+  const EngineSpec variant_defaults =
+      engine == "chain" ? parse_engine_spec("chain:variant=" + get("variant")) : defaults;
   std::string s = engine;
   bool first = true;
   for (std::size_t i = 0; i < settings.size(); ++i) {
-    if (settings[i].second == defaults.settings[i].second) continue;
+    const EngineSpec& d = settings[i].first == "variant" ? defaults : variant_defaults;
+    if (settings[i].second == d.settings[i].second) continue;
     s += (first ? ":" : ",") + settings[i].first + "=" + settings[i].second;
     first = false;
   }

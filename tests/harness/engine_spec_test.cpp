@@ -24,6 +24,22 @@ TEST(EngineSpec, VelocityRuleDefaultsToEachVariantsOwn) {
             "inelastic");
 }
 
+// Tables and plots label points by the short form; it must name the very setting that ran.
+TEST(EngineSpec, ShortFormParsesBackToTheSameSpec) {
+  for (const char* text :
+       {"chain", "chain:velocity=zero", "chain:variant=seed2014",
+        "chain:variant=seed2014,velocity=inelastic", "chain:variant=seed2014,velocity=zero",
+        "chain:passes=1,budget=4", "box2d", "box2d:substeps=8,skin=raw"}) {
+    const EngineSpec spec = parse_engine_spec(text);
+    EXPECT_EQ(parse_engine_spec(spec.short_str()).str(), spec.str()) << text;
+  }
+  EXPECT_EQ(parse_engine_spec("chain:variant=seed2014,velocity=zero").short_str(),
+            "chain:variant=seed2014");
+  EXPECT_EQ(parse_engine_spec("chain:variant=seed2014,velocity=inelastic").short_str(),
+            "chain:variant=seed2014,velocity=inelastic");
+  EXPECT_EQ(parse_engine_spec("chain:variant=modern,velocity=inelastic").short_str(), "chain");
+}
+
 TEST(EngineSpec, RefusesUnknownEnginesKeysAndValues) {
   for (const char* bad :
        {"bullet", "chain:speed=3", "chain:variant=fast", "box2d:vel_iters=0", "box2d:vel_iters=2.5",

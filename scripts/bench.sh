@@ -1,12 +1,18 @@
 #!/usr/bin/env bash
 # Runs the Google Benchmark suite (build/bin/chainbench_bench), keeps its JSON in
-# results/bench.json and regenerates README.md's results tables from it. Extra arguments go to
-# the benchmark, e.g. scripts/bench.sh --benchmark_filter='pyramid'. Takes about 10 minutes.
+# results/bench.json and regenerates README.md's results tables from it. Takes about 10 minutes.
+# With arguments (they go to the benchmark, e.g. --benchmark_filter=pyramid) it runs that part
+# only, into results/bench_part.json, and prints its tables instead of touching README.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/deps.sh run
 cmake --preset release
 cmake --build --preset release
 mkdir -p results
-build/bin/chainbench_bench --benchmark_out=results/bench.json --benchmark_out_format=json "$@"
-/usr/bin/python3 scripts/bench_table.py results/bench.json --readme README.md
+if [[ $# -eq 0 ]]; then
+  build/bin/chainbench_bench --benchmark_out=results/bench.json --benchmark_out_format=json
+  /usr/bin/python3 scripts/bench_table.py results/bench.json --readme README.md
+else
+  build/bin/chainbench_bench --benchmark_out=results/bench_part.json --benchmark_out_format=json "$@"
+  /usr/bin/python3 scripts/bench_table.py results/bench_part.json
+fi

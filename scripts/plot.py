@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Plots chainbench's results as PNG files (and SVG with --svg).
 
-    plot.py sweep   SWEEP_JSON --out DIR   per scene, accuracy against cost of every engine setting
-    plot.py scaling BENCH_JSON --out DIR   time per step against body count (Google Benchmark JSON)
-    plot.py states  RUN_JSON   --out DIR   every engine's final boxes, drawn over each other
-    plot.py trace   TRACE_CSV  --out DIR   displacement and penetration per step, over time
+    plot.py sweep   SWEEP_JSON [--out DIR]   per scene, accuracy against cost of every engine setting
+    plot.py scaling BENCH_JSON [--out DIR]   time per step against body count (Google Benchmark JSON)
+    plot.py states  RUN_JSON   [--out DIR]   every engine's final boxes, drawn over each other
+    plot.py trace   TRACE_CSV  [--out DIR]   displacement and penetration per step, over time
 
 Each written file's path is printed on stdout. Bad input (a missing or unreadable file, a file that
 is not what the subcommand reads, no usable data) is reported as one line on stderr naming the
@@ -44,7 +44,7 @@ def main(argv=None):
         p = sub.add_parser(command, help=text, formatter_class=argparse.RawDescriptionHelpFormatter,
                            description=f"{text}\n\n{inspect.cleandoc(plot.__doc__)}")
         p.add_argument("input", metavar=metavar, type=Path, help=f"file written by {source}")
-        p.add_argument("--out", required=True, type=Path, metavar="DIR",
+        p.add_argument("--out", default=Path("."), type=Path, metavar="DIR",
                        help="directory for the plots (created if missing)")
         p.add_argument("--svg", action="store_true", help="also write an SVG of each plot")
     sub.choices["trace"].add_argument("--name", help="plot name (default: the CSV file's stem)")

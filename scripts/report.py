@@ -171,7 +171,7 @@ def main():
     if os.path.exists(sweep_path):
         lines += sweep_section(load(sweep_path), plots)
 
-    bench_path = os.path.join(root, "bench.json")
+    bench_path = os.path.join(root, "bench_quick.json")
     if os.path.exists(bench_path):
         context, bench_runs = bench_table.load(bench_path)
         lines += ["## Time per step and scaling", "",

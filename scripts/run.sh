@@ -5,10 +5,11 @@
 #   results/stress.{json,txt}          chainbench stress, the full matrix
 #   results/traces/<scene>.csv         per-step traces of a few small scenes
 #   results/sweep.{json,csv}           a small error-against-run-time sweep
-#   results/bench.json                 a quick Google Benchmark subset (scaling)
+#   results/bench_quick.json           a quick Google Benchmark subset (scaling)
 #   results/plots/*.png                the plots (scripts/plot.py)
 #   results/report.md                  everything above in one page
-# Takes a few minutes on a 2-core machine. Options: --no-bench skips the benchmark subset.
+# About a minute once built (the build itself takes a few minutes on a 2-core machine).
+# Options: --no-bench skips the benchmark subset.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -16,7 +17,7 @@ bench=1
 for arg in "$@"; do
   case "$arg" in
     --no-bench) bench=0 ;;
-    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
     *) echo "usage: $0 [--no-bench]" >&2; exit 2 ;;
   esac
 done
@@ -27,7 +28,7 @@ cmake --build --preset release
 
 cb=build/bin/chainbench
 out=results
-rm -rf "$out/runs" "$out/traces" "$out/plots"
+rm -rf "$out/runs" "$out/traces" "$out/plots" "$out/bench_quick.json" "$out/bench_quick.txt"
 mkdir -p "$out/runs" "$out/traces" "$out/plots"
 start=$SECONDS
 say() { echo "run.sh: $* ($((SECONDS - start)) s)" >&2; }
@@ -45,8 +46,10 @@ for scene in "${scenes[@]}"; do
     > "$out/runs/$scene.txt"
 done
 
+files=()
 for file in bench/scenes/*.json; do
   scene=$(basename "$file" .json)
+  files+=("$scene")
   say "run $file"
   "$cb" run --scene-file "$file" --json "$out/runs/$scene.json" --csv "$out/runs/$scene.csv" \
     > "$out/runs/$scene.txt"
@@ -64,19 +67,19 @@ if [[ $bench -eq 1 ]]; then
   say "benchmark subset"
   build/bin/chainbench_bench \
     --benchmark_filter='^(pyramid/(chain|box2d)/|random_pile/(chain|box2d)/(1000|10000|100000)/|harness)' \
-    --benchmark_out="$out/bench.json" --benchmark_out_format=json > "$out/bench.txt"
+    --benchmark_out="$out/bench_quick.json" --benchmark_out_format=json > "$out/bench_quick.txt"
 fi
 
 say "plots"
 py=/usr/bin/python3
-for scene in "${scenes[@]}"; do
+for scene in "${scenes[@]}" "${files[@]}"; do
   "$py" scripts/plot.py states "$out/runs/$scene.json" --out "$out/plots" > /dev/null
 done
 for scene in "${traced[@]}"; do
   "$py" scripts/plot.py trace "$out/traces/$scene.csv" --name "$scene" --out "$out/plots" > /dev/null
 done
 "$py" scripts/plot.py sweep "$out/sweep.json" --out "$out/plots" > /dev/null
-[[ -f "$out/bench.json" ]] && "$py" scripts/plot.py scaling "$out/bench.json" --out "$out/plots" > /dev/null
+[[ -f "$out/bench_quick.json" ]] && "$py" scripts/plot.py scaling "$out/bench_quick.json" --out "$out/plots" > /dev/null
 
 "$py" scripts/report.py "$out"
 say "done: $out/report.md"

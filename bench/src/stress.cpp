@@ -1,16 +1,11 @@
 #include "stress.h"
 
+#include "child_process.h"
 #include "report.h"
 #include "runner.h"
 #include "scene_library.h"
 #include "text_table.h"
 
-#include <poll.h>
-#include <signal.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -28,7 +23,7 @@ struct Summary {
   char error[240];
 };
 
-Summary run_in_child(const StressCase& c, const EngineSpec& engine) {
+Summary summarize_case(const StressCase& c, const EngineSpec& engine) {
   Summary s{};
   try {
     const Scene scene = make_scene(c.scene, c.sets);
@@ -48,16 +43,6 @@ Summary run_in_child(const StressCase& c, const EngineSpec& engine) {
     std::snprintf(s.error, sizeof s.error, "%s", e.what());
   }
   return s;
-}
-
-bool read_all(int fd, void* data, std::size_t size) {
-  auto* p = static_cast<char*>(data);
-  while (size > 0) {
-    const ssize_t got = read(fd, p, size);
-    if (got <= 0) return false;
-    p += got, size -= static_cast<std::size_t>(got);
-  }
-  return true;
 }
 
 }  // namespace
@@ -128,7 +113,8 @@ bool StressVerdict::stable() const {
 
 std::string StressVerdict::verdict() const {
   if (hang) return "hang";
-  if (!finished) return "crash (signal " + std::to_string(signal) + ")";
+  if (!finished && signal != 0) return "crash (signal " + std::to_string(signal) + ")";
+  if (!finished) return "crash (exit " + std::to_string(exit_status) + ")";
   if (!error.empty()) return "error";
   std::string bad;
   if (!finite) bad += ", non-finite";
@@ -148,36 +134,12 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
   v.case_label = c.label();
   v.group = c.group;
   v.engine = engine.str();
-  int fds[2];
-  if (pipe(fds) != 0) throw std::runtime_error("stress: pipe() failed");
-  std::fflush(nullptr);  // nothing buffered may be written twice
-  const auto t0 = std::chrono::steady_clock::now();
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("stress: fork() failed");
-  if (pid == 0) {
-    close(fds[0]);
-    const Summary s = run_in_child(c, engine);
-    const ssize_t wrote = write(fds[1], &s, sizeof s);
-    _exit(wrote == static_cast<ssize_t>(sizeof s) ? 0 : 3);
-  }
-  close(fds[1]);
-  pollfd p{fds[0], POLLIN, 0};
-  const int ready = poll(&p, 1, static_cast<int>(timeout_s * 1000.0));
   Summary s{};
-  if (ready <= 0) {
-    kill(pid, SIGKILL);
-    v.hang = true;
-  } else {
-    v.finished = read_all(fds[0], &s, sizeof s);
-  }
-  close(fds[0]);
-  int status = 0;
-  waitpid(pid, &status, 0);
-  v.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!v.hang && WIFSIGNALED(status)) {
-    v.finished = false;
-    v.signal = WTERMSIG(status);
-  }
+  const ChildOutcome child = run_in_child(
+      std::function<Summary()>([&] { return summarize_case(c, engine); }), s, timeout_s);
+  v.finished = child.finished, v.hang = child.hang;
+  v.signal = child.signal, v.exit_status = child.exit_status;
+  v.wall_s = child.wall_s;
   if (!v.finished) return v;
   v.error = s.error;
   v.max_penetration = s.max_penetration, v.peak_speed = s.peak_speed, v.speed_bound = s.speed_bound;
@@ -252,6 +214,7 @@ nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, b
       c["ms_per_step"] = json_number(v.ms_per_step);
     }
     if (v.signal) c["signal"] = v.signal;
+    if (v.exit_status) c["exit_status"] = v.exit_status;
     if (!v.error.empty()) c["error"] = v.error;
     c["wall_s"] = v.wall_s;
     j["cases"].push_back(std::move(c));

@@ -33,7 +33,8 @@ struct StressVerdict {
   std::string case_label, group, engine;
   bool finished = false;  // false: the child crashed or ran out of time
   bool hang = false;
-  int signal = 0;  // the signal that ended the child, if one did
+  int signal = 0;       // the signal that ended the child, if one did
+  int exit_status = 0;  // or its exit status, if it exited without a result
   bool finite = true, in_bounds = true, blow_up = false, tunnelled = false;
   std::uint64_t budget_hits = 0, crush_events = 0;
   double max_penetration = 0.0, peak_speed = 0.0, speed_bound = 0.0;
@@ -41,7 +42,8 @@ struct StressVerdict {
   std::string error;  // the run failed with an exception in the child
 
   bool stable() const;
-  // ok / unstable: non-finite, out of bounds, blow-up / budget / hang / crash / error
+  // ok / unstable: non-finite, out of bounds, blow-up / budget / hang / crash (signal N) /
+  // crash (exit N) / error
   std::string verdict() const;
   // Whether this verdict, on the modern solver, fails the stress run.
   bool fatal() const;

@@ -21,9 +21,9 @@ struct ChildOutcome {
 ChildOutcome run_in_child(const std::function<void(void* result)>& work, void* result,
                           std::size_t size, double timeout_s);
 
-// The same for a trivially copyable result returned by `work`.
-template <class T>
-ChildOutcome run_in_child(const std::function<T()>& work, T& result, double timeout_s) {
+// The same for a trivially copyable result returned by `work()`.
+template <class T, class Work>
+ChildOutcome run_in_child(Work&& work, T& result, double timeout_s) {
   static_assert(std::is_trivially_copyable_v<T>, "the result crosses a pipe as bytes");
   return run_in_child([&](void* out) { *static_cast<T*>(out) = work(); }, &result, sizeof(T),
                       timeout_s);

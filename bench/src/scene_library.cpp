@@ -1,19 +1,17 @@
 #include "scene_library.h"
 
 #include "input_error.h"
+#include "text_table.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 namespace chainbench {
 namespace {
 
 std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
+  return fmt_g(v, 6);  // as %g: every digit a user could have typed in a range
 }
 
 }  // namespace

@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <exception>
 #include <map>
 
@@ -135,8 +134,7 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
   v.group = c.group;
   v.engine = engine.str();
   Summary s{};
-  const ChildOutcome child = run_in_child(
-      std::function<Summary()>([&] { return summarize_case(c, engine); }), s, timeout_s);
+  const ChildOutcome child = run_in_child([&] { return summarize_case(c, engine); }, s, timeout_s);
   v.finished = child.finished, v.hang = child.hang;
   v.signal = child.signal, v.exit_status = child.exit_status;
   v.wall_s = child.wall_s;

@@ -19,7 +19,7 @@ struct Pair {
 
 TEST(ChildProcess, ResultComesBackWhenTheChildFinishes) {
   Pair got{0, 0.0};
-  const ChildOutcome o = run_in_child(std::function<Pair()>([] { return Pair{42, 2.5}; }), got, 60);
+  const ChildOutcome o = run_in_child([] { return Pair{42, 2.5}; }, got, 60);
   EXPECT_TRUE(o.finished);
   EXPECT_FALSE(o.hang);
   EXPECT_EQ(got.a, 42);
@@ -29,11 +29,12 @@ TEST(ChildProcess, ResultComesBackWhenTheChildFinishes) {
 // SIGKILL rather than a segfault: the sanitizers turn a segfault into an exit of their own.
 TEST(ChildProcess, ASignalEndsTheChildNotTheCaller) {
   Pair got{7, 7.0};
-  const ChildOutcome o = run_in_child(std::function<Pair()>([] {
-                                        std::raise(SIGKILL);
-                                        return Pair{1, 1.0};
-                                      }),
-                                      got, 60);
+  const ChildOutcome o = run_in_child(
+      [] {
+        std::raise(SIGKILL);
+        return Pair{1, 1.0};
+      },
+      got, 60);
   EXPECT_FALSE(o.finished);
   EXPECT_EQ(o.signal, SIGKILL);
   EXPECT_EQ(got.a, 7) << "a child that died must not write the caller's result";
@@ -41,7 +42,7 @@ TEST(ChildProcess, ASignalEndsTheChildNotTheCaller) {
 
 TEST(ChildProcess, AnExitWithoutAResultIsReportedWithItsStatus) {
   Pair got{};
-  const ChildOutcome o = run_in_child(std::function<Pair()>([]() -> Pair { _exit(5); }), got, 60);
+  const ChildOutcome o = run_in_child([]() -> Pair { _exit(5); }, got, 60);
   EXPECT_FALSE(o.finished);
   EXPECT_EQ(o.signal, 0);
   EXPECT_EQ(o.exit_status, 5);
@@ -49,11 +50,12 @@ TEST(ChildProcess, AnExitWithoutAResultIsReportedWithItsStatus) {
 
 TEST(ChildProcess, ChildOverItsTimeIsKilledAsAHang) {
   Pair got{};
-  const ChildOutcome o = run_in_child(std::function<Pair()>([] {
-                                        std::this_thread::sleep_for(std::chrono::seconds(30));
-                                        return Pair{};
-                                      }),
-                                      got, 0.05);
+  const ChildOutcome o = run_in_child(
+      [] {
+        std::this_thread::sleep_for(std::chrono::seconds(30));
+        return Pair{};
+      },
+      got, 0.05);
   EXPECT_TRUE(o.hang);
   EXPECT_FALSE(o.finished);
   EXPECT_LT(o.wall_s, 20.0) << "the child must be killed, not waited for";

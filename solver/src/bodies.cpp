@@ -66,12 +66,13 @@ int kind_rank(BodyType type) {
   return 3;
 }
 
+// v[i] = old v[order[i]], through `spare`, which is left holding v's old buffer for the next.
 template <class T>
-void gather(std::vector<T>& v, const std::vector<std::uint32_t>& order) {
-  std::vector<T> out(v.size());
+void gather(std::vector<T>& v, std::span<const std::uint32_t> order, std::vector<T>& spare) {
+  spare.resize(v.size());
   for (std::size_t i = 0; i < order.size(); ++i)
-    out[i] = v[order[i]];
-  v = std::move(out);
+    spare[i] = v[order[i]];
+  v.swap(spare);
 }
 
 }  // namespace
@@ -122,10 +123,8 @@ void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id) {
   std::sort(order.begin(), order.end(),
             [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
 
-  gather(box, order), gather(vx, order), gather(vy, order);
-  gather(mass, order), gather(gravity_scale, order);
-  gather(restitution, order), gather(drive_x, order), gather(drive_y, order);
-  gather(driven, order), gather(touching, order), gather(type, order), gather(id, order);
+  Spare spare;
+  permute(order, spare);
 
   dynamic_end = movable_end = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -134,6 +133,18 @@ void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id) {
   }
   for (std::uint32_t i = 0; i < n; ++i)
     slot_of_id[id[i]] = i;
+}
+
+void Bodies::Spare::reserve(std::size_t n) {
+  box.reserve(n), real.reserve(n), byte.reserve(n), word.reserve(n), type.reserve(n);
+}
+
+void Bodies::permute(std::span<const std::uint32_t> order, Spare& spare) {
+  gather(box, order, spare.box);
+  for (auto* v : {&vx, &vy, &mass, &gravity_scale, &restitution, &drive_x, &drive_y})
+    gather(*v, order, spare.real);
+  gather(driven, order, spare.byte), gather(touching, order, spare.byte);
+  gather(type, order, spare.type), gather(id, order, spare.word);
 }
 
 }  // namespace chain::detail

@@ -4,13 +4,15 @@
 // themselves (kind, then place along a Z-order curve, then size and the rest), never from
 // creation order, so that a scene built in any order gives the same bits, and bodies close in
 // space are close in memory. Dynamic bodies come first, then kinematic, then
-// static, which lets hot loops run over plain index ranges.
+// static, which lets hot loops run over plain index ranges. Later the modern resolver's own
+// walk may renumber the dynamic bodies (layout.h), which depends on the bodies alone too.
 #pragma once
 
 #include <chain/types.h>
 #include <chain/world.h>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace chain::detail {
@@ -55,6 +57,18 @@ struct Bodies {
   std::uint32_t swap_remove(std::uint32_t slot);
   // Sorts slots into solve order; fills slot_of_id (indexed by BodyId value).
   void canonicalize(std::vector<std::uint32_t>& slot_of_id);
+
+  // Buffers permute() fills and swaps in, kept between calls so that it allocates nothing.
+  struct Spare {
+    std::vector<Box> box;
+    std::vector<double> real;
+    std::vector<std::uint8_t> byte;
+    std::vector<std::uint32_t> word;
+    std::vector<BodyType> type;
+    void reserve(std::size_t n);
+  };
+  // Slot i takes what slot order[i] held, for every i (order is a permutation of the slots).
+  void permute(std::span<const std::uint32_t> order, Spare& spare);
 };
 
 }  // namespace chain::detail

@@ -31,8 +31,7 @@ void Broadphase::configure(const Bodies& bodies) {
   const std::uint32_t n = bodies.size();
   level_of_.assign(n, 0);
   entry_of_.assign(n, 0);
-  build_x_.resize(n);
-  build_y_.resize(n);
+  built_at_.resize(n);
   levels_.clear();
 
   std::vector<std::uint32_t> by_size(n);
@@ -79,24 +78,26 @@ void Broadphase::configure(const Bodies& bodies) {
   }
 }
 
+void Broadphase::renumber(std::span<const std::uint32_t> order) {
+  ++generation_;
+  // Slot order within each level, as configure() leaves it; the lists keep their capacity.
+  for (Level& level : levels_)
+    level.bodies.clear();
+  for (std::uint32_t slot = 0; slot < order.size(); ++slot)
+    levels_[level_of_[order[slot]]].bodies.push_back(slot);
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    for (const std::uint32_t slot : levels_[l].bodies)
+      level_of_[slot] = static_cast<std::uint8_t>(l);
+  }
+}
+
 void Broadphase::build(const Bodies& bodies) {
   margin_ = 0.0;
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-    build_x_[i] = bodies.x(i);
-    build_y_[i] = bodies.y(i);
+    built_at_[i] = {bodies.x(i), bodies.y(i)};
   }
   for (Level& level : levels_)
     level.build(bodies, entry_of_);
-}
-
-bool Broadphase::refresh(const Bodies& bodies) {
-  double moved = 0.0;
-  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-    moved = std::max(
-        moved, std::max(std::abs(bodies.x(i) - build_x_[i]), std::abs(bodies.y(i) - build_y_[i])));
-  }
-  margin_ = moved;
-  return near_pairs_hold();
 }
 
 void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry_of) {

@@ -12,7 +12,8 @@
 //
 // A body moved after build() stays in the bucket and entry it was built into: note_move() widens
 // later queries by the largest displacement so far, and queries test current positions from
-// the bodies, so a pair created by a push is never missed.
+// the bodies, so a pair created by a push is never missed. Integration notes its moves too, so
+// telling whether the near pairs still hold needs no pass over the bodies.
 #pragma once
 
 #include "bodies.h"
@@ -20,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace chain::detail {
@@ -28,24 +30,25 @@ class Broadphase {
  public:
   // Chooses levels and cells; call whenever the body set changes.
   void configure(const Bodies& bodies);
+  // The slots were renumbered (slot i was order[i]): files each body under its new slot. Like
+  // configure(), it changes generation(), and the next query needs build().
+  void renumber(std::span<const std::uint32_t> order);
   // Buckets every body at its current position.
   void build(const Bodies& bodies);
-  // Accounts for moves the broadphase was not told of (integration). True while no body has
-  // moved a quarter of the slack since build(): every pair that can overlap now was a near pair
-  // then, and the grid needs no rebuild.
-  bool refresh(const Bodies& bodies);
-  // Changes whenever configure() runs (the body set changed).
+  // Changes whenever the body set changes (configure()) or the slots are renumbered.
   std::uint64_t generation() const { return generation_; }
+  // Every move of a body after build() must be noted, integration included: queries and
+  // near_pairs_hold() go by the largest displacement since build().
   void note_move(std::uint32_t body, double x, double y) {
-    margin_ =
-        std::max(margin_, std::max(std::abs(x - build_x_[body]), std::abs(y - build_y_[body])));
+    margin_ = std::max(margin_,
+                       std::max(std::abs(x - built_at_[body].x), std::abs(y - built_at_[body].y)));
   }
   // True while no body has moved a quarter of the slack since build(): every pair that can
   // overlap now was a near pair then.
   bool near_pairs_hold() const { return 4.0 * margin_ < slack_; }
   // Pairs closer than this are near pairs.
   double slack() const { return slack_; }
-  // The largest displacement of any body since build() (as of the last refresh or move).
+  // The largest displacement of any body from where build() saw it, at any move since.
   double moved() const { return margin_; }
 
   // fn(i, j) with i < j, once for every pair whose boxes are less than slack() apart on both
@@ -116,7 +119,11 @@ class Broadphase {
   std::vector<Level> levels_;
   std::vector<std::uint8_t> level_of_;   // per slot
   std::vector<std::uint32_t> entry_of_;  // per slot: index in its level's entries
-  std::vector<double> build_x_, build_y_;
+  struct Point {
+    double x, y;
+  };
+  // Per slot, where build() saw the body: x and y together, as every note_move() reads both.
+  std::vector<Point> built_at_;
   double margin_ = 0.0;
   double slack_ = 0.0;
   std::uint64_t generation_ = 0;
@@ -215,7 +222,8 @@ void Broadphase::for_each_overlap(const Bodies& bodies, std::uint32_t body, doub
 
 template <class Fn>
 void Broadphase::for_each_stale_candidate(const Bodies& bodies, std::uint32_t body, Fn&& fn) const {
-  const double x = build_x_[body], y = build_y_[body], hx = bodies.hx(body), hy = bodies.hy(body);
+  const double x = built_at_[body].x, y = built_at_[body].y, hx = bodies.hx(body),
+               hy = bodies.hy(body);
   for (const Level& level : levels_) {
     level.scan(level.cells_near(x, y, hx, hy, 0.0), [&](const Entry& e) { fn(e.body); });
   }

@@ -63,6 +63,13 @@ void ChainResolver::resolve(StepContext& ctx) {
   }
 }
 
+void ChainResolver::forget_slots() {
+  state_.forget_slots();
+  std::fill(local_mark_.begin(), local_mark_.end(), 0u);
+  mark_ = 0;
+  near_generation_ = 0;
+}
+
 // A grid scan gives the near pairs (closer than the slack), which chains look through instead of
 // the grid while bodies have moved less than half the slack. While no body has moved a quarter
 // of the slack since that scan, they still hold every pair that can overlap, and no new scan is
@@ -70,7 +77,7 @@ void ChainResolver::resolve(StepContext& ctx) {
 void ChainResolver::gather_contacts(StepContext& ctx) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
-  if (near_generation_ == ctx.broadphase.generation() && ctx.broadphase.refresh(bodies)) {
+  if (near_generation_ == ctx.broadphase.generation() && ctx.broadphase.near_pairs_hold()) {
     state_.begin_sweep(bodies, nullptr);
   } else {
     ctx.broadphase.build(bodies);
@@ -81,15 +88,16 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     });
     state_.begin_sweep(bodies, &near_pairs_);
   }
-  // Walked body by body in solve order: each body's data is read once, its neighbours are close
-  // to it in memory, and the contacts come out in an order that depends on the bodies alone.
+  // Walked body by body in solve order, each pair taken at its later body: the earlier one was
+  // just read and is still in cache, and the contacts come out in an order that depends on the
+  // bodies alone.
   contacts_.clear();
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
     const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
     for (const std::uint32_t j : state_.near(i)) {
-      if (j > i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
+      if (j < i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
           (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol) {
-        contacts_.push_back({i, j});
+        contacts_.push_back({j, i});
       }
     }
   }

@@ -24,6 +24,7 @@
 #include "step_context.h"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace chain::detail {
@@ -31,6 +32,12 @@ namespace chain::detail {
 class ChainResolver {
  public:
   void resolve(StepContext& ctx);
+  // The last step's dynamic bodies in the order it first reached them, and the number of jumps
+  // back in memory on the way (see ChainState::reach_order).
+  std::span<const std::uint32_t> reach_order() const { return state_.reach_order(); }
+  std::size_t reach_descents() const { return state_.reach_descents(); }
+  // The slots were renumbered: forgets every per-body mark and the near pairs.
+  void forget_slots();
 
  private:
   enum class Stage : std::uint8_t { kBack, kForward };

@@ -10,21 +10,31 @@ void ChainState::begin_step(StepContext& ctx) {
   const std::size_t n = ctx.bodies.size();
   if (marks_.size() != n) {
     // The body set changed: size every per-body buffer for it now, not in some later step.
-    marks_.assign(n, Marks{});
-    stamp_ = step_ = sweep_ = 0;
-    suspect_stamp_ = 1;
-    suspects_.clear();
+    marks_.resize(n);
+    forget_slots();
     suspects_.reserve(n);
+    reach_order_.reserve(n);
     near_start_.reserve(n + 2);
     near_.reserve(8 * n);
     ctx.crushes.reserve(std::min<std::size_t>(n, 1024));
   }
   if (++step_ == 0) {  // wrapped: forget every old mark
     for (Marks& m : marks_)
-      m.crushed = 0;
+      m.reached = 0;
     step_ = 1;
   }
+  reach_order_.clear();
+  reach_descents_ = 0;
   leftover = false;
+}
+
+void ChainState::forget_slots() {
+  std::fill(marks_.begin(), marks_.end(), Marks{});
+  stamp_ = step_ = sweep_ = 0;
+  suspect_stamp_ = 1;
+  suspects_.clear();
+  reach_order_.clear();
+  reach_descents_ = 0;
 }
 
 void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near_pairs) {
@@ -89,7 +99,8 @@ void ChainState::gather_overlaps(StepContext& ctx, std::uint32_t around,
 void ChainState::report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,
                               std::uint32_t blocker, int axis) {
   assert(anchor != kNoSlot && blocker != kNoSlot);
-  marks_[body].crushed = step_;
+  reach(body);
+  marks_[body].crushed = true;
   ctx.crushes.push_back({body, anchor, blocker, static_cast<Axis>(axis)});
   ++ctx.stats.crush_events;
 }

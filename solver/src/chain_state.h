@@ -1,6 +1,7 @@
 // State the modern resolver's chains share within a step: which bodies a chain has reached,
 // which are supported by the immovable level (and from which side), which are crushed, the near
-// pairs of the sweep, and the flags that say whether another sweep is needed.
+// pairs of the sweep, the flags that say whether another sweep is needed, and the order in which
+// the step first reached each body (layout.h renumbers the bodies by it).
 #pragma once
 
 #include "step_context.h"
@@ -19,6 +20,8 @@ class ChainState {
  public:
   // Sizes per-body marks; call at the start of every step.
   void begin_step(StepContext& ctx);
+  // Forgets every per-body mark: the slots were renumbered.
+  void forget_slots();
   // Forgets supports (bodies move between sweeps); with `near_pairs`, takes new near pairs.
   void begin_sweep(const Bodies& bodies, const std::vector<Pair>* near_pairs);
   // A fresh mark for the next chain.
@@ -53,12 +56,16 @@ class ChainState {
   }
 
   bool visited(std::uint32_t body) const { return marks_[body].visited == stamp_; }
-  void visit(std::uint32_t body) { marks_[body].visited = stamp_; }
+  void visit(std::uint32_t body) {
+    reach(body);
+    marks_[body].visited = stamp_;
+  }
   // Bodies this chain placed as walls along axis: another wall of the chain may push them further.
   bool walled(std::uint32_t body, int axis) const {
     return marks_[body].walled == stamp_ && marks_[body].walled_axis == axis;
   }
   void wall(std::uint32_t body, int axis) {
+    reach(body);
     marks_[body].visited = marks_[body].walled = stamp_;
     marks_[body].walled_axis = static_cast<std::int8_t>(axis);
   }
@@ -66,7 +73,9 @@ class ChainState {
   std::uint32_t& on_stack(std::uint32_t body) { return marks_[body].on_stack; }
   std::uint32_t on_stack(std::uint32_t body) const { return marks_[body].on_stack; }
 
-  bool crushed(std::uint32_t body) const { return marks_[body].crushed == step_; }
+  bool crushed(std::uint32_t body) const {
+    return marks_[body].reached == step_ && marks_[body].crushed;
+  }
   // Reports `body` squeezed between `anchor` and `blocker` and leaves it alone for the step.
   void report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,
                     std::uint32_t blocker, int axis);
@@ -99,6 +108,11 @@ class ChainState {
   const std::vector<std::uint32_t>& suspects() const { return suspects_; }
   void clear_suspects();
 
+  // Dynamic bodies in the order the step first reached them, and how many of them came after a
+  // body of a higher slot: each such is a jump back in memory.
+  std::span<const std::uint32_t> reach_order() const { return reach_order_; }
+  std::size_t reach_descents() const { return reach_descents_; }
+
   bool leftover = false;  // some chain flagged a body: the next sweep must look again
   bool cut = false;       // the current chain ran out of budget
 
@@ -109,13 +123,23 @@ class ChainState {
     std::uint32_t visited = 0;  // stamp of the last chain the body joined
     std::uint32_t walled = 0;   // stamp of the last chain that placed it as a wall
     std::uint32_t on_stack = 0;
-    std::uint32_t crushed = 0;               // the step it was crushed in
+    std::uint32_t reached = 0;               // the last step a chain reached it in
     std::uint32_t support_sweep = 0;         // the sweep its supports were found in
     std::uint32_t support_anchor = kNoSlot;  // the immovable body behind its supports
     std::uint32_t suspect = 0;               // stamp of the sweep that flagged it
     std::int8_t support_dir[2] = {0, 0};     // per axis: the direction it is backed in, or 0
     std::int8_t walled_axis = 0;
+    bool crushed = false;  // crushed in step `reached`
   };
+
+  void reach(std::uint32_t body) {
+    Marks& m = marks_[body];
+    if (m.reached == step_) return;
+    m.reached = step_;
+    m.crushed = false;
+    if (!reach_order_.empty() && body < reach_order_.back()) ++reach_descents_;
+    reach_order_.push_back(body);
+  }
 
   std::vector<std::uint32_t> near_start_, near_;  // near pairs as adjacency lists
   std::vector<Marks> marks_;
@@ -124,6 +148,8 @@ class ChainState {
   std::uint32_t sweep_ = 0;
   std::vector<std::uint32_t> suspects_;
   std::uint32_t suspect_stamp_ = 1;
+  std::vector<std::uint32_t> reach_order_;  // each body at most once a step: capacity n
+  std::size_t reach_descents_ = 0;
 };
 
 }  // namespace chain::detail

@@ -3,6 +3,7 @@
 #include "bodies.h"
 #include "broadphase.h"
 #include "chain_resolver.h"
+#include "layout.h"
 #include "seed2014_resolver.h"
 #include "step_context.h"
 #include "velocity_response.h"
@@ -103,6 +104,7 @@ struct World::Impl {
   detail::VelocityResponse response;
   detail::ChainResolver modern;
   detail::Seed2014Resolver seed2014;
+  detail::Layout layout;
   StepStats stats;
   std::vector<detail::CrushRecord> crush_records;
   std::vector<CrushEvent> crushes;
@@ -117,11 +119,26 @@ struct World::Impl {
   void canonicalize() {
     bodies.canonicalize(slot_of_id);
     broadphase.configure(bodies);
+    layout.reset(bodies.size());
+    list_creation_order();
+    dirty = false;
+  }
+
+  void list_creation_order() {
     creation_order.clear();
     for (const std::uint32_t s : slot_of_id) {
       if (s != detail::kNoSlot && s < bodies.dynamic_end) creation_order.push_back(s);
     }
-    dirty = false;
+  }
+
+  // Slot i takes the body of slot order[i]; everything that names slots follows.
+  void renumber(std::span<const std::uint32_t> order) {
+    bodies.permute(order, layout.spare());
+    for (std::uint32_t i = 0; i < bodies.size(); ++i)
+      slot_of_id[bodies.id[i]] = i;
+    list_creation_order();
+    broadphase.renumber(order);
+    modern.forget_slots();
   }
 
   void integrate(double dt) {
@@ -137,6 +154,7 @@ struct World::Impl {
       }
       b.pos(0, i) += b.vx[i] * dt;
       b.pos(1, i) += b.vy[i] * dt;
+      broadphase.note_move(i, b.x(i), b.y(i));
     }
   }
 };
@@ -272,6 +290,14 @@ void World::step(double dt) {
   for (const detail::CrushRecord& r : w.crush_records) {
     w.crushes.push_back({BodyId{w.bodies.id[r.body]}, BodyId{w.bodies.id[r.anchor]},
                          BodyId{w.bodies.id[r.blocker]}, r.axis});
+  }
+  if (w.def.variant == Variant::kModern) {
+    const std::span<const std::uint32_t> order =
+        w.layout.plan(w.bodies, w.modern.reach_order(), w.modern.reach_descents());
+    if (!order.empty()) {
+      w.renumber(order);
+      w.stats.renumbered = 1;
+    }
   }
 }
 

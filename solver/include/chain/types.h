@@ -66,6 +66,8 @@ struct StepStats {
   std::uint32_t max_depth = 0;      // longest chain of nested resolutions
   std::uint32_t budget_hits = 0;    // chains cut short because the work budget ran out
   std::uint32_t crush_events = 0;   // bodies squeezed between two immovable bodies
+  std::uint32_t renumbered = 0;     // 1 if the step left its bodies stored in the order it reached
+                                    // them, for the next steps' memory access (modern)
 };
 
 }  // namespace chain

@@ -1,0 +1,45 @@
+#include "layout.h"
+
+#include <algorithm>
+#include <cassert>
+
+namespace chain::detail {
+namespace {
+
+// Renumber once more than one body in this many was reached after a body of a higher slot. A
+// pile in Z-order has about one in six; the order a resting pile was renumbered in, none.
+constexpr std::size_t kDescentShare = 16;
+// At most once in this many steps: renumbering costs about as much as a step, and a scene whose
+// reach order changes every step would otherwise pay for it every step.
+constexpr std::uint32_t kMinSteps = 32;
+
+}  // namespace
+
+void Layout::reset(std::size_t bodies) {
+  order_.reserve(bodies);
+  placed_.assign(bodies, 0);
+  spare_.reserve(bodies);
+  steps_since_ = kMinSteps - 1;  // the first step may renumber
+}
+
+std::span<const std::uint32_t> Layout::plan(const Bodies& bodies,
+                                            std::span<const std::uint32_t> reached,
+                                            std::size_t descents) {
+  if (++steps_since_ < kMinSteps || descents * kDescentShare <= bodies.size()) return {};
+  steps_since_ = 0;
+  // The reached bodies in the order reached, the other dynamic bodies as they were, and the
+  // immovable ones where they are (slot ranges by kind hold).
+  order_.clear();
+  std::fill(placed_.begin(), placed_.end(), std::uint8_t{0});
+  for (const std::uint32_t body : reached) {
+    assert(body < bodies.dynamic_end && !placed_[body]);
+    placed_[body] = 1;
+    order_.push_back(body);
+  }
+  for (std::uint32_t slot = 0; slot < bodies.size(); ++slot) {
+    if (!placed_[slot]) order_.push_back(slot);
+  }
+  return order_;
+}
+
+}  // namespace chain::detail

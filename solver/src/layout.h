@@ -1,0 +1,39 @@
+// When the bodies are renumbered after the first Z-order.
+//
+// canonicalize() puts bodies close in space close in memory, but not in the order a step visits
+// them: the modern resolver settles a pile from the ground up, layer by layer, and one layer of a
+// Z-ordered pile is spread over all of memory, so at a million bodies nearly every body it
+// reaches is a cache miss. When a step reaches many bodies out of slot order, the dynamic bodies
+// are renumbered in the order that step reached them, and the steps after it walk memory front
+// to back. The reach order depends on the bodies alone, so a scene built in any order is
+// renumbered the same way.
+#pragma once
+
+#include "bodies.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace chain::detail {
+
+class Layout {
+ public:
+  // Sizes every buffer for the body set, so that renumbering allocates nothing; call whenever
+  // the body set changes.
+  void reset(std::size_t bodies);
+  // After a step that first reached the dynamic bodies `reached` in that order, with `descents`
+  // jumps back to a lower slot: the order to renumber the slots in (slot i takes the body of
+  // slot order[i]), or empty when the layout is good enough.
+  std::span<const std::uint32_t> plan(const Bodies& bodies, std::span<const std::uint32_t> reached,
+                                      std::size_t descents);
+  Bodies::Spare& spare() { return spare_; }
+
+ private:
+  std::vector<std::uint32_t> order_;
+  std::vector<std::uint8_t> placed_;
+  Bodies::Spare spare_;
+  std::uint32_t steps_since_ = 0;  // steps since the last renumbering
+};
+
+}  // namespace chain::detail

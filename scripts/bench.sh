@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs the Google Benchmark suite (build/bin/chainbench_bench), keeps its JSON in
-# results/bench.json and regenerates README.md's results tables from it. Takes about 10 minutes.
+# results/bench.json and regenerates README.md's results tables from it. Takes
+# about a minute and a half once built.
 # With arguments (they go to the benchmark, e.g. --benchmark_filter=pyramid) it runs that part
 # only, into results/bench_part.json, and prints its tables instead of touching README.md.
 set -euo pipefail

@@ -12,12 +12,14 @@ void ChainState::begin_step(StepContext& ctx) {
     // The body set changed: size every per-body buffer for it now, not in some later step.
     marks_.resize(n);
     forget_slots();
-    suspects_.reserve(n);
-    reach_order_.reserve(n);
     near_start_.reserve(n + 2);
     near_.reserve(8 * n);
     ctx.crushes.reserve(std::min<std::size_t>(n, 1024));
   }
+  // Each holds a body at most once; checked every step, as a copied world's vectors come without
+  // the capacity of the original's.
+  if (reach_order_.capacity() < n) reach_order_.reserve(n);
+  if (suspects_.capacity() < n) suspects_.reserve(n);
   if (++step_ == 0) {  // wrapped: forget every old mark
     for (Marks& m : marks_)
       m.reached = 0;

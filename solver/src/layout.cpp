@@ -9,9 +9,6 @@ namespace {
 // Renumber once more than one body in this many was reached after a body of a higher slot. A
 // pile in Z-order has about one in six; the order a resting pile was renumbered in, none.
 constexpr std::size_t kDescentShare = 16;
-// At most once in this many steps: renumbering costs about as much as a step, and a scene whose
-// reach order changes every step would otherwise pay for it every step.
-constexpr std::uint32_t kMinSteps = 32;
 
 }  // namespace
 
@@ -19,7 +16,6 @@ void Layout::reset(std::size_t bodies) {
   order_.reserve(bodies);
   placed_.assign(bodies, 0);
   spare_.reserve(bodies);
-  steps_since_ = kMinSteps - 1;  // the first step may renumber
 }
 
 std::span<const std::uint32_t> Layout::plan(const Bodies& bodies,

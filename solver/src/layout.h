@@ -19,8 +19,13 @@ namespace chain::detail {
 
 class Layout {
  public:
+  // Renumber at most once in this many steps: renumbering costs about as much as a step, and a
+  // scene whose reach order changes every step would otherwise pay for it every step.
+  static constexpr std::uint32_t kMinSteps = 32;
+
   // Sizes every buffer for the body set, so that renumbering allocates nothing; call whenever
-  // the body set changes.
+  // the body set changes. It does not restart the count of steps since the last renumbering, so
+  // a world whose body set changes every step is still renumbered at most once in 32 steps.
   void reset(std::size_t bodies);
   // After a step that first reached the dynamic bodies `reached` in that order, with `descents`
   // jumps back to a lower slot: the order to renumber the slots in (slot i takes the body of
@@ -33,7 +38,8 @@ class Layout {
   std::vector<std::uint32_t> order_;
   std::vector<std::uint8_t> placed_;
   Bodies::Spare spare_;
-  std::uint32_t steps_since_ = 0;  // steps since the last renumbering
+  // Steps since the last renumbering; the first step may renumber.
+  std::uint32_t steps_since_ = kMinSteps - 1;
 };
 
 }  // namespace chain::detail

@@ -1,13 +1,13 @@
 // chainbench run: one scene in several engines, side by side.
 #include "commands.h"
 #include "input_error.h"
+#include "output_file.h"
 #include "progress.h"
 #include "report.h"
 #include "runner.h"
 #include "scene_file.h"
 #include "scene_library.h"
 
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -25,13 +25,6 @@ struct RunArgs {
   std::string json, csv, trace;
   std::string metrics = "all";
 };
-
-std::unique_ptr<std::ofstream> open_output(const std::string& path, const char* option) {
-  if (path.empty()) return nullptr;
-  auto out = std::make_unique<std::ofstream>(path, std::ios::binary | std::ios::trunc);
-  if (!*out) throw InputError(std::string(option) + ": cannot write " + path);
-  return out;
-}
 
 int run(const RunArgs& a) {
   // Everything the user typed is checked before anything runs.
@@ -76,9 +69,9 @@ int run(const RunArgs& a) {
   print_run_table(std::cout, report);
   if (json_out) *json_out << run_json(report).dump(2) << '\n';
   if (csv_out) write_run_csv(*csv_out, report);
-  for (auto* out : {json_out.get(), csv_out.get(), trace_out.get()}) {
-    if (out && !out->flush()) throw std::runtime_error("could not finish writing an output file");
-  }
+  finish_output(json_out.get(), a.json);
+  finish_output(csv_out.get(), a.csv);
+  finish_output(trace_out.get(), a.trace);
   return 0;
 }
 

@@ -1,11 +1,11 @@
 // chainbench stress: the stiff and extreme cases, in every engine, with verdicts.
 #include "commands.h"
 #include "input_error.h"
+#include "output_file.h"
 #include "progress.h"
 #include "stress.h"
 
 #include <algorithm>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -35,11 +35,7 @@ int run(const StressArgs& a) {
              return label.find(w) != std::string::npos;
            });
   };
-  std::unique_ptr<std::ofstream> json_out;
-  if (!a.json.empty()) {
-    json_out = std::make_unique<std::ofstream>(a.json, std::ios::binary | std::ios::trunc);
-    if (!*json_out) throw InputError("--json: cannot write " + a.json);
-  }
+  const auto json_out = open_output(a.json, "--json");
   std::vector<StressCase> cases;
   for (const StressCase& c : stress_cases()) {
     if ((!a.quick || c.quick) && selected(c.label())) cases.push_back(c);
@@ -59,10 +55,8 @@ int run(const StressArgs& a) {
   }
   progress.clear();
   print_stress_table(std::cout, verdicts);
-  if (json_out) {
-    *json_out << stress_json(verdicts, a.quick).dump(2) << '\n';
-    if (!json_out->flush()) throw std::runtime_error("could not finish writing " + a.json);
-  }
+  if (json_out) *json_out << stress_json(verdicts, a.quick).dump(2) << '\n';
+  finish_output(json_out.get(), a.json);
   int failures = 0;
   for (const StressVerdict& v : verdicts)
     failures += v.engine == modern && v.fatal();

@@ -1,6 +1,7 @@
 // chainbench sweep: error against run time over a grid of engine settings.
 #include "commands.h"
 #include "input_error.h"
+#include "output_file.h"
 #include "progress.h"
 #include "scene_file.h"
 #include "scene_library.h"
@@ -8,7 +9,6 @@
 
 #include <atomic>
 #include <csignal>
-#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -27,13 +27,6 @@ struct SweepArgs {
   int steps = 0;
   std::string json, csv;
 };
-
-std::unique_ptr<std::ofstream> open_output(const std::string& path, const char* option) {
-  if (path.empty()) return nullptr;
-  auto out = std::make_unique<std::ofstream>(path, std::ios::binary | std::ios::trunc);
-  if (!*out) throw InputError(std::string(option) + ": cannot write " + path);
-  return out;
-}
 
 int run(const SweepArgs& a) {
   // Everything the user typed is checked before anything runs.
@@ -82,9 +75,8 @@ int run(const SweepArgs& a) {
   }
   if (json_out) *json_out << sweep_json(results).dump(2) << '\n';
   if (csv_out) write_sweep_csv(*csv_out, results);
-  for (auto* out : {json_out.get(), csv_out.get()}) {
-    if (out && !out->flush()) throw std::runtime_error("could not finish writing an output file");
-  }
+  finish_output(json_out.get(), a.json);
+  finish_output(csv_out.get(), a.csv);
   if (g_stop) {
     std::cerr
         << "chainbench: interrupted; the points measured so far are above (and in the outputs)\n";

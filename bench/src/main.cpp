@@ -2,6 +2,7 @@
 // Exit status: 0 done, 2 bad input or usage, 1 an internal failure.
 #include "commands.h"
 #include "input_error.h"
+#include "output_file.h"
 
 #include <CLI/CLI.hpp>
 
@@ -25,6 +26,9 @@ int main(int argc, char** argv) {
   } catch (const chainbench::InputError& e) {
     std::cerr << "chainbench: " << e.what() << '\n';
     return 2;
+  } catch (const chainbench::OutputError& e) {
+    std::cerr << "chainbench: " << e.what() << '\n';
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "chainbench: internal error: " << e.what() << '\n';
     return 1;

@@ -147,6 +147,20 @@ TEST(Cli, BadSceneFileNamesFileAndPath) {
       << r.out;
 }
 
+// /dev/full opens but takes nothing: every command that writes a file says which one it could not
+// finish, with status 1 and without calling it an internal error.
+TEST(Cli, AnOutputFileThatCannotBeFinishedIsNamed) {
+  for (const std::string call :
+       {"run --scene stack --engines chain --json /dev/full",
+        "run --scene stack --engines chain --trace /dev/full",
+        "sweep --scene stack --csv /dev/full", "stress --quick --filter stack --json /dev/full"}) {
+    const Result r = chainbench(call);
+    EXPECT_EQ(r.status, 1) << call << '\n' << r.out;
+    EXPECT_NE(r.out.find("could not finish writing /dev/full"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
+  }
+}
+
 TEST(Cli, ListAndEnginesDescribeWhatCanRun) {
   const Result list = chainbench("list");
   EXPECT_EQ(list.status, 0);

@@ -75,7 +75,7 @@ void harness_benchmark(benchmark::State& state) {
     engine->step(step++);
     if (metrics) {
       engine->read_state(after);
-      recorder.observe(before, after, false);
+      recorder.observe(before, after, step, false);
       std::swap(before, after);
     }
   }

@@ -34,6 +34,72 @@ class Checker {
   std::vector<SceneIssue> issues;
 };
 
+void check_expectation(Checker& c, const Scene& s, std::size_t i) {
+  namespace L = limits;
+  using Kind = Expectation::Kind;
+  const Expectation& e = s.expect[i];
+  const std::string at = "expect[" + std::to_string(i) + "]";
+  const bool every = e.body == Expectation::kEveryDynamic;
+  if (e.kind != Kind::kNoOverlap) {
+    if (every && e.kind == Kind::kCenter) {
+      c.add(at + ".body", "\"*\" cannot have one expected centre: name a body");
+    } else if (!every && e.body >= s.bodies.size()) {
+      c.add(at + ".body", "names no body of the scene");
+    }
+  }
+  auto coordinate = [&](const std::string& path, double v) {
+    c.finite_within(path, v, -L::kMaxCoordinate, L::kMaxCoordinate, "within +-1e8 m");
+  };
+  switch (e.kind) {
+    case Kind::kCenter:
+      coordinate(at + ".center[0]", e.center.x);
+      coordinate(at + ".center[1]", e.center.y);
+      c.positive_within(at + ".tolerance", e.tolerance, 1e6, "> 0 and <= 1e6 m");
+      break;
+    case Kind::kMoved:
+      coordinate(at + ".moved[0]", e.moved.x);
+      coordinate(at + ".moved[1]", e.moved.y);
+      c.positive_within(at + ".tolerance", e.tolerance, 1e6, "> 0 and <= 1e6 m");
+      break;
+    case Kind::kBounds: {
+      if (!e.min_x && !e.min_y && !e.max_x && !e.max_y) {
+        c.add(at, "min and max bound no axis: give a number for x or y");
+      }
+      const char* axis[2] = {"x", "y"};
+      const std::optional<double>* lo[2] = {&e.min_x, &e.min_y};
+      const std::optional<double>* hi[2] = {&e.max_x, &e.max_y};
+      for (int a = 0; a < 2; ++a) {
+        if (*lo[a]) coordinate(at + ".min[" + std::to_string(a) + "]", **lo[a]);
+        if (*hi[a]) coordinate(at + ".max[" + std::to_string(a) + "]", **hi[a]);
+        if (*lo[a] && *hi[a] && **lo[a] > **hi[a]) {
+          c.add(at + ".min[" + std::to_string(a) + "]", std::string(axis[a]) + " min " +
+                                                            num(**lo[a]) + " is above " + axis[a] +
+                                                            " max " + num(**hi[a]));
+        }
+      }
+      break;
+    }
+    case Kind::kAtRest:
+      c.finite_within(at + ".at_rest", e.speed, 0.0, L::kMaxSpeed, "in [0, 1e5] m/s");
+      break;
+    case Kind::kNoOverlap:
+      c.finite_within(at + ".no_overlap", e.depth, 0.0, L::kMaxHalfExtent, "in [0, 1e6] m");
+      break;
+  }
+  if (e.from_step && (*e.from_step < 0 || *e.from_step > s.steps)) {
+    c.add(at + ".from_step", "must be in [0, " + std::to_string(s.steps) +
+                                 "] (the scene's steps), got " + std::to_string(*e.from_step));
+  }
+  if (e.to_step && (*e.to_step < 0 || *e.to_step > s.steps)) {
+    c.add(at + ".to_step", "must be in [0, " + std::to_string(s.steps) +
+                               "] (the scene's steps), got " + std::to_string(*e.to_step));
+  }
+  if (e.from_step && e.to_step && *e.to_step < *e.from_step) {
+    c.add(at + ".to_step", "must be >= from_step (" + std::to_string(*e.from_step) + "), got " +
+                               std::to_string(*e.to_step));
+  }
+}
+
 }  // namespace
 
 std::vector<SceneIssue> validate(const Scene& s) {
@@ -52,6 +118,7 @@ std::vector<SceneIssue> validate(const Scene& s) {
     c.add("bodies",
           "holds " + std::to_string(s.bodies.size()) + " bodies, more than the limit of 4000000");
   if (s.drivers.size() > L::kMaxDrivers) c.add("drivers", "holds more than 1000000 drivers");
+  if (s.expect.size() > L::kMaxExpectations) c.add("expect", "holds more than 1000000 entries");
 
   std::unordered_set<std::string> names;
   for (std::size_t i = 0; i < s.bodies.size() && i < L::kMaxBodies; ++i) {
@@ -99,15 +166,11 @@ std::vector<SceneIssue> validate(const Scene& s) {
     if (d.to_step < d.from_step)
       c.add(at + ".to_step", "must be >= from_step, got " + std::to_string(d.to_step));
   }
-  for (std::size_t i = 0; i < s.expect.size(); ++i) {
-    const Expectation& e = s.expect[i];
-    const std::string at = "expect[" + std::to_string(i) + "]";
-    if (e.body >= s.bodies.size()) c.add(at + ".body", "names no body of the scene");
-    c.finite_within(at + ".center[0]", e.center.x, -L::kMaxCoordinate, L::kMaxCoordinate,
-                    "within +-1e8 m");
-    c.finite_within(at + ".center[1]", e.center.y, -L::kMaxCoordinate, L::kMaxCoordinate,
-                    "within +-1e8 m");
-    c.positive_within(at + ".tolerance", e.tolerance, 1e6, "> 0 m");
+  for (std::size_t i = 0; i < s.expect.size() && i < L::kMaxExpectations; ++i)
+    check_expectation(c, s, i);
+  if (s.penetration_tolerance) {
+    c.positive_within("penetration_tolerance", *s.penetration_tolerance, L::kMaxHalfExtent,
+                      "> 0 and <= 1e6 m");
   }
   return c.issues;
 }
@@ -123,6 +186,22 @@ Extent initial_extent(const Scene& s) {
     first = false;
   }
   return {{0.5 * (x0 + x1), 0.5 * (y0 + y1)}, 0.5 * std::hypot(x1 - x0, y1 - y0)};
+}
+
+const char* to_string(Expectation::Kind kind) {
+  switch (kind) {
+    case Expectation::Kind::kCenter:
+      return "center";
+    case Expectation::Kind::kMoved:
+      return "moved";
+    case Expectation::Kind::kBounds:
+      return "bounds";
+    case Expectation::Kind::kAtRest:
+      return "at_rest";
+    case Expectation::Kind::kNoOverlap:
+      return "no_overlap";
+  }
+  return "?";
 }
 
 const char* to_string(BodyKind kind) {

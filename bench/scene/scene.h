@@ -37,12 +37,38 @@ struct Driver {
   int to_step = std::numeric_limits<int>::max();
 };
 
-// Where a body should be at the end of the run, within `tolerance` metres.
+// What a scene says is physically right, checked for every engine by the harness. One entry
+// states one fact:
+//   kCenter     the body's centre within `tolerance` metres of `center`
+//   kMoved      the body's centre within `tolerance` metres of where it started plus `moved`
+//               ((0, 0): it stays put)
+//   kBounds     the body's centre within [min, max] on each axis that has a bound
+//   kAtRest     the body's speed, measured from its displacement in a step, at most `speed` m/s
+//   kNoOverlap  no two boxes (at least one dynamic) overlap deeper than `depth` metres
+// kMoved, kBounds and kAtRest may name every dynamic body at once (kEveryDynamic). Without a window
+// an entry is checked on the final state; with one, on every state k (k steps taken, 0 = as built)
+// with from_step <= k <= to_step.
 struct Expectation {
-  std::size_t body = 0;
+  enum class Kind { kCenter, kMoved, kBounds, kAtRest, kNoOverlap };
+  static constexpr std::size_t kEveryDynamic = std::numeric_limits<std::size_t>::max();
+
+  Kind kind = Kind::kCenter;
+  std::size_t body = 0;  // a body index or kEveryDynamic; unused by kNoOverlap
   Vec2d center;
+  Vec2d moved;
   double tolerance = 0.01;
+  std::optional<double> min_x, min_y, max_x, max_y;
+  double speed = 0.0;
+  double depth = 0.0;
+  std::optional<int> from_step, to_step;
+
+  bool windowed() const { return from_step.has_value() || to_step.has_value(); }
+  // The states the entry is checked on in a run of `steps` steps: [first, last].
+  int first_state(int steps) const { return windowed() ? from_step.value_or(0) : steps; }
+  int last_state(int steps) const { return to_step.value_or(steps); }
 };
+
+const char* to_string(Expectation::Kind kind);
 
 struct Scene {
   std::string name;
@@ -56,6 +82,9 @@ struct Scene {
   std::vector<SceneBody> bodies;
   std::vector<Driver> drivers;
   std::vector<Expectation> expect;
+  // Overlaps deeper than this (metres) make a run `penetrating`; unset: 5% of the smaller box of
+  // each overlapping pair. A case that must squeeze boxes sets what the squeeze forces.
+  std::optional<double> penetration_tolerance;
 
   double friction_of(const SceneBody& b) const { return b.friction.value_or(friction); }
   double restitution_of(const SceneBody& b) const { return b.restitution.value_or(restitution); }
@@ -68,6 +97,7 @@ namespace limits {
 inline constexpr int kMaxSteps = 10'000'000;
 inline constexpr std::size_t kMaxBodies = 4'000'000;
 inline constexpr std::size_t kMaxDrivers = 1'000'000;
+inline constexpr std::size_t kMaxExpectations = 1'000'000;
 inline constexpr double kMinDt = 1e-6;
 inline constexpr double kMaxDt = 1.0;
 inline constexpr double kMaxCoordinate = 1e8;

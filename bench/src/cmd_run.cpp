@@ -7,7 +7,9 @@
 #include "runner.h"
 #include "scene_file.h"
 #include "scene_library.h"
+#include "verdict.h"
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -24,19 +26,47 @@ struct RunArgs {
   int steps = 0;
   std::string json, csv, trace;
   std::string metrics = "all";
+  std::vector<std::string> require;
 };
 
+// What keeps a required engine's run from passing: each expectation it missed and a verdict
+// other than ok. Empty when it passes.
+std::vector<std::string> shortfalls(const EngineRun& run) {
+  std::vector<std::string> out;
+  if (!run.verdict) return out;
+  for (const Finding& f : run.verdict->findings)
+    out.push_back(std::string(to_string(f.what)) + ": " + f.detail);
+  return out;
+}
+
 int run(const RunArgs& a) {
-  // Everything the user typed is checked before anything runs.
-  Scene scene = a.scene_file.empty() ? make_scene(a.scene, a.sets) : load_scene_file(a.scene_file);
+  // Everything the user typed is checked before anything runs. A built-in scene is built for the
+  // run's length, so that its right answer follows it.
   if (!a.scene_file.empty() && !a.sets.empty())
     throw InputError("--set applies to built-in scenes, not --scene-file");
-  if (a.steps > 0) scene.steps = a.steps;
+  std::vector<std::string> sets = a.sets;
+  if (a.steps > 0) sets.push_back("steps=" + std::to_string(a.steps));
+  Scene scene = a.scene_file.empty() ? make_scene(a.scene, sets) : load_scene_file(a.scene_file);
+  std::string note;
+  if (!a.scene_file.empty() && a.steps > 0) note = set_run_length(scene, a.steps, a.scene_file);
   const std::vector<EngineSpec> engines = parse_engine_list(a.engines);
   std::optional<EngineSpec> reference;
   if (a.reference != "none") reference = parse_engine_spec(a.reference);
+  std::vector<std::string> required;
+  for (const std::string& text : a.require) {
+    const std::string spec = parse_engine_spec(text).str();
+    if (std::none_of(engines.begin(), engines.end(),
+                     [&](const EngineSpec& e) { return e.str() == spec; })) {
+      throw InputError("--require " + text + ": not among --engines (" + a.engines + ")");
+    }
+    required.push_back(spec);
+  }
   RunOptions options;
   options.metrics = parse_metric_selection(a.metrics);
+  if (!required.empty()) {
+    // A verdict needs stability and penetration.
+    options.metrics.stability = options.metrics.penetration = true;
+  }
   auto json_out = open_output(a.json, "--json");
   auto csv_out = open_output(a.csv, "--csv");
   auto trace_out = open_output(a.trace, "--trace");
@@ -67,12 +97,23 @@ int run(const RunArgs& a) {
   compare(report);
 
   print_run_table(std::cout, report);
+  if (!note.empty()) std::cout << "\nnote: " << note << '\n';
   if (json_out) *json_out << run_json(report).dump(2) << '\n';
   if (csv_out) write_run_csv(*csv_out, report);
   finish_output(json_out.get(), a.json);
   finish_output(csv_out.get(), a.csv);
   finish_output(trace_out.get(), a.trace);
-  return 0;
+  int status = 0;
+  for (const std::string& spec : required) {
+    const auto run = std::find_if(report.runs.begin(), report.runs.end(),
+                                  [&](const EngineRun& r) { return r.engine == spec; });
+    for (const std::string& why : shortfalls(*run)) {
+      std::cerr << "chainbench: required engine " << parse_engine_spec(spec).short_str()
+                << " fails: " << why << '\n';
+      status = 3;
+    }
+  }
+  return status;
 }
 
 }  // namespace
@@ -101,6 +142,12 @@ void add_run_command(CLI::App& app, int* status) {
       ->add_option("--metrics", args->metrics,
                    "all, none, or a comma list of displacement, penetration, stability")
       ->capture_default_str();
+  run_app->add_option("--require", args->require,
+                      "engine spec that must meet every expectation with verdict ok, else exit "
+                      "3 (repeatable)");
+  run_app->footer(
+      "Exit status: 0 done; 2 bad input or usage; 3 a --require engine missed an expectation or "
+      "was not ok; 1 an output file could not be finished, or an internal failure.");
   run_app->callback([args, status, scene, file] {
     if (scene->count() == 0 && file->count() == 0)
       throw InputError("run: give --scene NAME or --scene-file FILE");

@@ -31,18 +31,22 @@ struct SweepArgs {
 int run(const SweepArgs& a) {
   // Everything the user typed is checked before anything runs.
   std::vector<Scene> scenes;
+  std::vector<std::string> sets = a.sets, notes;
+  if (a.steps > 0) sets.push_back("steps=" + std::to_string(a.steps));
   for (const std::string& name : a.scenes)
-    scenes.push_back(make_scene(name, a.sets));
+    scenes.push_back(make_scene(name, sets));
   if (!a.scene_files.empty() && !a.sets.empty() && a.scenes.empty()) {
     throw InputError("--set applies to built-in scenes, not --scene-file");
   }
-  for (const std::string& file : a.scene_files)
+  for (const std::string& file : a.scene_files) {
     scenes.push_back(load_scene_file(file));
+    if (a.steps > 0) {
+      if (std::string note = set_run_length(scenes.back(), a.steps, file); !note.empty())
+        notes.push_back(std::move(note));
+    }
+  }
   if (scenes.empty())
     throw InputError("sweep: give --scene NAME or --scene-file FILE (repeatable)");
-  for (Scene& s : scenes) {
-    if (a.steps > 0) s.steps = a.steps;
-  }
   std::vector<EngineSpec> grid;
   for (const std::string& g : a.grids) {
     for (EngineSpec& s : parse_grid(g))
@@ -73,6 +77,8 @@ int run(const SweepArgs& a) {
     print_sweep_table(std::cout, r);
     std::cout << '\n';
   }
+  for (const std::string& note : notes)
+    std::cout << "note: " << note << '\n';
   if (json_out) *json_out << sweep_json(results).dump(2) << '\n';
   if (csv_out) write_sweep_csv(*csv_out, results);
   finish_output(json_out.get(), a.json);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 
@@ -32,16 +33,67 @@ MetricSelection parse_metric_selection(const std::string& text) {
   return sel;
 }
 
-MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
-    : sel_(selection), dt_(scene.dt) {
-  double fastest = 0.0, drive = 0.0, restitution = scene.restitution, gravity_scale = 0.0;
+namespace {
+
+double magnitude(Vec2d p) {
+  return std::max(std::abs(p.x), std::abs(p.y));
+}
+
+std::uint64_t pair_key(std::size_t i, std::size_t j) {
+  return static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint64_t>(j);
+}
+
+}  // namespace
+
+double MetricsRecorder::initial_depth(std::size_t i, std::size_t j) const {
+  if (initial_.empty()) return 0.0;
+  const std::pair<std::uint64_t, double> key{pair_key(i, j), -HUGE_VAL};
+  const auto it = std::lower_bound(initial_.begin(), initial_.end(), key);
+  return it != initial_.end() && it->first == key.first ? it->second : 0.0;
+}
+
+bool below_resolution(double value, double magnitude) {
+  const double m = std::abs(magnitude);
+  if (!std::isfinite(value) || !std::isfinite(m)) return false;
+  // One unit in the last place of m (for m = 0, of the smallest normal double).
+  const double ulp = m > 0.0 ? std::nextafter(m, HUGE_VAL) - m : DBL_MIN;
+  return std::abs(value) <= 2.0 * ulp;
+}
+
+BodyState initial_state(const Scene& scene) {
+  BodyState s(scene.bodies.size());
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    s.position[i] = scene.bodies[i].center;
+    s.velocity[i] = scene.bodies[i].kind == BodyKind::kStatic ? Vec2d{} : scene.bodies[i].velocity;
+  }
+  return s;
+}
+
+PairOverlap MetricsRecorder::deepest_overlap(const Scene& scene, const BodyState& state, int step) {
+  PairScan scan(scene);
+  scan.build(state, state);
+  PairOverlap deepest;
+  deepest.step = step;
+  scan.for_each_pair([&](std::size_t i, std::size_t j) {
+    const double d = scan.depth(state, i, j);
+    if (d > deepest.depth) deepest.depth = d, deepest.a = i, deepest.b = j;
+  });
+  return deepest;
+}
+
+MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
+    : sel_(selection), scene_(scene), dt_(scene.dt), scan_(scene), tunnels_(scene) {
+  const std::size_t n = scene.bodies.size();
+  double fastest = 0.0, drive = 0.0, restitution = scene.restitution, gravity_scale = 0.0;
+  double largest = 0.0;  // largest half diagonal of a dynamic box
+  for (std::size_t i = 0; i < n; ++i) {
     const SceneBody& b = scene.bodies[i];
     const double speed = std::hypot(b.velocity.x, b.velocity.y);
     if (b.kind == BodyKind::kDynamic) {
       dynamic_.push_back(i);
       fastest = std::max(fastest, speed);
       gravity_scale = std::max(gravity_scale, std::abs(b.gravity_scale));
+      largest = std::max(largest, std::hypot(b.half_extents.x, b.half_extents.y));
     } else if (b.kind == BodyKind::kKinematic) {
       drive = std::max(drive, speed);
     }
@@ -49,20 +101,53 @@ MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
   }
   for (const Driver& d : scene.drivers)
     drive = std::max(drive, std::hypot(d.velocity.x, d.velocity.y));
-  // A body can fall for the whole run, keep its start speed, and be hit by something driven,
-  // bouncing off it at up to (1 + e) times its speed. A quarter more, plus 1 m/s, for slack.
-  const double fall =
-      std::hypot(scene.gravity.x, scene.gravity.y) * gravity_scale * scene.dt * scene.steps;
+
+  // Bodies created overlapping are pushed apart, by up to their overlaps in one step.
+  double total_overlap = 0.0;
+  {
+    const BodyState start = initial_state(scene);
+    PairScan scan(scene);
+    scan.build(start, start);
+    scan.for_each_pair([&](std::size_t i, std::size_t j) {
+      const double d = scan.depth(start, i, j);
+      if (d <= 0.0) return;
+      total_overlap += d;
+      initial_.push_back({pair_key(i, j), d});
+    });
+    std::sort(initial_.begin(), initial_.end());
+  }
+  // Pushing apart the overlaps a scene starts with may move a body further than any speed
+  // explains, by up to those overlaps in all; beyond that, a visible share of the smallest box
+  // (position rounding: a float engine far from the origin moves in steps of its resolution).
+  double smallest = HUGE_VAL;
+  for (const std::size_t i : dynamic_) {
+    smallest = std::min(
+        {smallest, 2.0 * scene.bodies[i].half_extents.x, 2.0 * scene.bodies[i].half_extents.y});
+  }
+  recovery_ = total_overlap + (dynamic_.empty() ? 0.0 : 0.05 * smallest);
+  slack_.assign(n, recovery_);
+
+  // A body can fall for the whole run, keep its start speed, be hit by something driven or
+  // falling, and bounce off it at up to (1 + e) times that speed. A quarter more, plus 1 m/s.
+  const double g = std::hypot(scene.gravity.x, scene.gravity.y);
+  const double duration = scene.dt * scene.steps;
+  const double fall = g * gravity_scale * duration;
   speed_bound_ = 1.25 * ((1.0 + restitution) * drive + fastest + fall) + 1.0;
-  const Extent e = initial_extent(scene);
-  center_ = e.center;
-  bound_radius_ = 10.0 * std::max(e.radius, 1.0);
-  if (sel_.penetration) scan_.emplace(scene);
-  step_efd_.assign(scene.bodies.size(), 0.0);
-  step_pen_.assign(scene.bodies.size(), 0.0);
+  const double push = std::max({drive, fastest, fall});
+  reach_.assign(n, 0.0);
+  for (const std::size_t i : dynamic_) {
+    const SceneBody& b = scene.bodies[i];
+    const double own =
+        std::hypot(b.velocity.x, b.velocity.y) + g * std::abs(b.gravity_scale) * duration;
+    const double bound = 1.25 * ((1.0 + restitution) * push + own) + 1.0;
+    reach_[i] = bound * duration + total_overlap + 2.0 * largest;
+  }
+  step_efd_.assign(n, 0.0);
+  step_pen_.assign(n, 0.0);
 }
 
-void MetricsRecorder::observe(const BodyState& before, const BodyState& after, bool per_body) {
+void MetricsRecorder::observe(const BodyState& before, const BodyState& after, int step,
+                              bool per_body, bool depth) {
   if (sel_.displacement || per_body) {
     for (const std::size_t i : dynamic_) {
       const double dx = after.position[i].x - before.position[i].x - dt_ * after.velocity[i].x;
@@ -74,39 +159,90 @@ void MetricsRecorder::observe(const BodyState& before, const BodyState& after, b
     }
     body_steps_ += dynamic_.size();
   }
-  if (scan_) {
-    max_pen_ = std::max(max_pen_, scan_->deepest(after, per_body ? std::span<double>(step_pen_)
-                                                                 : std::span<double>()));
+  const bool overlaps = sel_.penetration || per_body || depth;
+  if (overlaps || sel_.stability) {
+    scan_.build(before, after);
+    deepest_ = PairOverlap{};
+    deepest_.step = step;
+    if (per_body) std::fill(step_pen_.begin(), step_pen_.end(), 0.0);
+    scan_.for_each_pair([&](std::size_t i, std::size_t j) {
+      if (sel_.stability) tunnels_.check(before, after, i, j, step);
+      if (!overlaps) return;
+      const double d = scan_.depth(after, i, j);
+      const Vec2d hi = scan_.half(i), hj = scan_.half(j);
+      const double scale = std::max(
+          {magnitude(after.position[i]), magnitude(after.position[j]), hi.x + hj.x, hi.y + hj.y});
+      if (d <= 0.0 || below_resolution(d, scale)) return;
+      // A pair created overlapping may stay as deep as it started: how fast it must recover is
+      // for the scene to state (a windowed no_overlap expectation).
+      const double tolerance =
+          std::max(scene_.penetration_tolerance.value_or(0.1 * std::min({hi.x, hi.y, hj.x, hj.y})),
+                   initial_depth(i, j));
+      if (d > deepest_.depth) deepest_ = {d, i, j, step, tolerance};
+      if (per_body) {
+        step_pen_[i] = std::max(step_pen_[i], d);
+        step_pen_[j] = std::max(step_pen_[j], d);
+      }
+      if (sel_.penetration && d / tolerance > worst_ratio_) {
+        worst_ratio_ = d / tolerance;
+        worst_ = {d, i, j, step, tolerance};
+      }
+    });
+    if (sel_.stability) tunnels_.end_step();
+    max_pen_ = std::max(max_pen_, deepest_.depth);
   }
   if (sel_.stability) {
     for (const std::size_t i : dynamic_) {
-      const Vec2d p = after.position[i], v = after.velocity[i];
+      const Vec2d p = after.position[i], v = after.velocity[i], q = before.position[i];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(v.x) ||
           !std::isfinite(v.y)) {
         finite_ = false;
         continue;
       }
-      peak_speed_ = std::max(peak_speed_, std::sqrt(v.x * v.x + v.y * v.y));
-      const double ox = p.x - center_.x, oy = p.y - center_.y;
-      if (ox * ox + oy * oy > bound_radius_ * bound_radius_) in_bounds_ = false;
+      const double moved = std::hypot(p.x - q.x, p.y - q.y);
+      const double speed = moved / dt_;
+      if (speed > peak_speed_) peak_speed_ = speed, peak_body_ = i, peak_step_ = step;
+      // A leaky bucket: a step slower than the bound gives back what faster ones took, up to
+      // the allowance, so that over any stretch of steps a body travels at most the bound times
+      // its duration plus the allowance.
+      slack_[i] = std::min(recovery_, slack_[i] + speed_bound_ * dt_ - moved);
+      if (slack_[i] < 0.0 && !blow_up_) {
+        blow_up_ = true, blow_up_body_ = i, blow_up_step_ = step, blow_up_speed_ = speed;
+      }
     }
   }
 }
 
-Metrics MetricsRecorder::result() const {
+Metrics MetricsRecorder::result(const BodyState& last) const {
   Metrics m;
   if (sel_.displacement) {
     m.efd_total = efd_total_;
     m.efd_per_body_step = body_steps_ > 0 ? efd_total_ / static_cast<double>(body_steps_) : 0.0;
     m.efd_max_step = efd_max_;
   }
-  if (sel_.penetration) m.max_penetration = max_pen_;
+  if (sel_.penetration) {
+    m.max_penetration = max_pen_;
+    if (worst_ratio_ > 0.0) m.worst_overlap = worst_;
+  }
   if (sel_.stability) {
     m.peak_speed = peak_speed_;
+    m.peak_speed_body = peak_body_;
+    m.peak_speed_step = peak_step_;
     m.speed_bound = speed_bound_;
     m.finite = finite_;
-    m.in_bounds = in_bounds_;
-    m.blow_up = peak_speed_ > speed_bound_;
+    m.blow_up = blow_up_;
+    m.blow_up_body = blow_up_body_;
+    m.blow_up_step = blow_up_step_;
+    m.blow_up_speed = blow_up_speed_;
+    for (const std::size_t i : dynamic_) {
+      const Vec2d p = last.position[i], p0 = scene_.bodies[i].center;
+      const double d = std::hypot(p.x - p0.x, p.y - p0.y);
+      if (std::isfinite(d) && d > reach_[i]) m.escaped.push_back(i);
+    }
+    m.in_bounds = m.escaped.empty();
+    m.tunnelled = tunnels_.count() > 0;
+    m.tunnel = tunnels_.first();
+    m.tunnel_count = tunnels_.count();
   }
   return m;
 }
@@ -138,8 +274,9 @@ PositionError position_error(const Scene& scene, std::span<const Vec2d> run,
   double sum = 0.0;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (scene.bodies[i].kind != BodyKind::kDynamic) continue;
-    const double d = std::hypot(run[i].x - reference[i].x, run[i].y - reference[i].y);
+    double d = std::hypot(run[i].x - reference[i].x, run[i].y - reference[i].y);
     if (!std::isfinite(d)) return {HUGE_VAL, HUGE_VAL};  // a lost body: no finite error
+    if (below_resolution(d, std::max(magnitude(run[i]), magnitude(reference[i])))) d = 0.0;
     e.max = std::max(e.max, d);
     sum += d * d;
     ++n;

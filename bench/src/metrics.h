@@ -1,23 +1,25 @@
-// The metrics of DESIGN.md, computed by the harness from positions and velocities, the same way
-// for every engine. Only what is selected is computed: with nothing selected a run steps bare.
+// The metrics of a run, computed by the harness from positions and velocities, the same way for
+// every engine. Only what is selected is computed: with nothing selected a run steps bare.
 #pragma once
 
 #include "engine.h"
-#include "overlap_scan.h"
+#include "pair_scan.h"
 #include "scene.h"
+#include "tunnelling.h"
 
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace chainbench {
 
 struct MetricSelection {
   bool displacement = true;  // energy-free displacement
-  bool penetration = true;   // max penetration
-  bool stability = true;     // finite, in bounds, peak speed against its bound
+  bool penetration = true;   // max penetration, and penetration against the scene's tolerance
+  bool stability = true;     // finite, escapes, tunnelling, peak speed against its bound
 
   static MetricSelection none() { return {false, false, false}; }
   bool any() const { return displacement || penetration || stability; }
@@ -26,38 +28,92 @@ struct MetricSelection {
 // Parses "all", "none" or a comma list of displacement, penetration, stability.
 MetricSelection parse_metric_selection(const std::string& text);
 
+// An overlap between two bodies in some state.
+struct PairOverlap {
+  double depth = 0.0;  // m, along the axis of least penetration
+  std::size_t a = 0, b = 0;
+  int step = 0;            // the state (steps taken)
+  double tolerance = 0.0;  // what the pair may overlap before the run is penetrating, m
+};
+
 struct Metrics {
   // Energy-free displacement: d_i^n = |x_i^{n+1} - x_i^n - h v_i^{n+1}| over dynamic bodies.
   std::optional<double> efd_total, efd_per_body_step, efd_max_step;
   std::optional<double> max_penetration;
+  // The overlap furthest beyond its tolerance (deepest relative to it) over the run.
+  std::optional<PairOverlap> worst_overlap;
+  // Fastest displacement of any dynamic body in a step, divided by dt (m/s): measured from
+  // positions, so that no velocity rule can hide a body thrown across the scene.
   std::optional<double> peak_speed;
-  std::optional<double> speed_bound;  // what gravity, drives and initial velocities can give
-  std::optional<bool> finite, in_bounds, blow_up;
+  std::size_t peak_speed_body = 0;
+  int peak_speed_step = 0;
+  std::optional<double> speed_bound;  // what gravity, drivers and initial velocities can give
+  // Blow-up: over some stretch of steps a body travelled further than the speed bound allows in
+  // that time, by more than the overlaps the scene starts with can explain plus 5% of the
+  // smallest box. The body, the step it crossed that line and its speed then.
+  std::optional<bool> finite, blow_up, tunnelled;
+  std::size_t blow_up_body = 0;
+  int blow_up_step = 0;
+  double blow_up_speed = 0.0;
+  // Escapes: bodies that ended farther from their start than anything in the scene could send
+  // them (judged per body: the body's own speed bound over the run, plus initial overlaps).
+  std::optional<bool> in_bounds;
+  std::vector<std::size_t> escaped;
+  std::optional<TunnelEvent> tunnel;  // the first body seen passing through another
+  std::uint64_t tunnel_count = 0;
 };
 
 class MetricsRecorder {
  public:
   MetricsRecorder(const Scene& scene, MetricSelection selection);
-  // Call after every step with the state before and after it. Fills step_displacement() and
-  // step_penetration() (per body, this step) when `per_body` is true.
-  void observe(const BodyState& before, const BodyState& after, bool per_body);
-  Metrics result() const;
+  // Call after every step with the state before and after it and the step's number (1 for the
+  // first step). Fills step_displacement() and step_penetration() (per body, this step) when
+  // `per_body` is true, and last_deepest() when `depth` is true or penetration is selected.
+  void observe(const BodyState& before, const BodyState& after, int step, bool per_body,
+               bool depth = false);
+  // The metrics of the run that ended in `last`.
+  Metrics result(const BodyState& last) const;
   std::span<const double> step_displacement() const { return step_efd_; }
   std::span<const double> step_penetration() const { return step_pen_; }
+  // The deepest overlap of the state after the last observed step (for expectations).
+  const PairOverlap& last_deepest() const { return deepest_; }
+
+  // The deepest overlap in `state`, found with a scan of its own (the initial state, say).
+  static PairOverlap deepest_overlap(const Scene& scene, const BodyState& state, int step);
 
  private:
+  // How deep pair (i, j) overlapped in the initial state (0 if apart).
+  double initial_depth(std::size_t i, std::size_t j) const;
+
   MetricSelection sel_;
+  const Scene& scene_;
   double dt_;
   std::vector<std::size_t> dynamic_;
-  Vec2d center_;
-  double bound_radius_;
+  std::vector<double> reach_;  // per body: how far from its start anything could send it, m
+  std::vector<std::pair<std::uint64_t, double>> initial_;  // overlaps at the start, by pair
   double speed_bound_;
-  std::optional<OverlapScan> scan_;
+  PairScan scan_;
+  TunnelWatch tunnels_;
   std::vector<double> step_efd_, step_pen_;
-  double efd_total_ = 0.0, efd_max_ = 0.0, max_pen_ = 0.0, peak_speed_ = 0.0;
+  double efd_total_ = 0.0, efd_max_ = 0.0, max_pen_ = 0.0;
+  double peak_speed_ = 0.0;
+  std::size_t peak_body_ = 0;
+  int peak_step_ = 0;
+  double recovery_ = 0.0;      // how far beyond the bound a body may travel, m
+  std::vector<double> slack_;  // per body: what is left of that allowance, m
+  bool blow_up_ = false;
+  std::size_t blow_up_body_ = 0;
+  int blow_up_step_ = 0;
+  double blow_up_speed_ = 0.0;
+  PairOverlap deepest_, worst_;
+  double worst_ratio_ = 0.0;
   std::uint64_t body_steps_ = 0;
-  bool finite_ = true, in_bounds_ = true;
+  bool finite_ = true;
 };
+
+// Whether a difference of `value` between quantities of magnitude `magnitude` is rounding: at or
+// below two units in the last place of that magnitude. Such figures are reported as 0.
+bool below_resolution(double value, double magnitude);
 
 // FNV-1a, 64 bit, over the bit patterns of every final position (x then y, scene order).
 std::uint64_t position_hash(std::span<const Vec2d> positions);
@@ -67,8 +123,11 @@ struct PositionError {
   double max = 0.0;
   double rms = 0.0;
 };
-// |x_i - x_i^ref| over the dynamic bodies.
+// |x_i - x_i^ref| over the dynamic bodies (differences below resolution count as 0).
 PositionError position_error(const Scene& scene, std::span<const Vec2d> run,
                              std::span<const Vec2d> reference);
+
+// The scene's initial state: centres and initial velocities, angles 0.
+BodyState initial_state(const Scene& scene);
 
 }  // namespace chainbench

@@ -2,6 +2,7 @@
 
 #include "text_table.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace chainbench {
@@ -38,6 +39,71 @@ std::string short_name(const std::string& spec) {
   return parse_engine_spec(spec).short_str();
 }
 
+ordered_json optional_number(const std::optional<double>& v) {
+  return v ? json_number(*v) : ordered_json(nullptr);
+}
+
+// An expect entry as the scene states it: kind, body ("*" for every dynamic body), its figures
+// and its window.
+ordered_json expectation_json(const Scene& s, const Expectation& e) {
+  ordered_json j;
+  j["kind"] = to_string(e.kind);
+  if (e.kind != Expectation::Kind::kNoOverlap)
+    j["body"] = e.body == Expectation::kEveryDynamic ? std::string("*") : s.bodies[e.body].name;
+  switch (e.kind) {
+    case Expectation::Kind::kCenter:
+      j["center"] = {e.center.x, e.center.y};
+      j["tolerance"] = e.tolerance;
+      break;
+    case Expectation::Kind::kMoved:
+      j["moved"] = {e.moved.x, e.moved.y};
+      j["tolerance"] = e.tolerance;
+      break;
+    case Expectation::Kind::kBounds:
+      j["min"] = {optional_number(e.min_x), optional_number(e.min_y)};
+      j["max"] = {optional_number(e.max_x), optional_number(e.max_y)};
+      break;
+    case Expectation::Kind::kAtRest:
+      j["at_rest"] = e.speed;
+      break;
+    case Expectation::Kind::kNoOverlap:
+      j["no_overlap"] = e.depth;
+      break;
+  }
+  if (e.windowed()) {
+    j["from_step"] = e.first_state(s.steps);
+    j["to_step"] = e.last_state(s.steps);
+  }
+  return j;
+}
+
+// Every entry's outcome: the expected value, the actual one at the worst state checked, the
+// error there and whether the entry passed.
+ordered_json expect_result_json(const Scene& s, const ExpectResult& r) {
+  ordered_json j = {{"max_error", json_number(r.max_error)}, {"pass", r.pass}};
+  ordered_json entries = ordered_json::array();
+  for (const ExpectOutcome& o : r.entries) {
+    ordered_json e = expectation_json(s, s.expect[o.index]);
+    if (o.body) e["worst_body"] = s.bodies[*o.body].name;
+    if (o.other) e["other_body"] = s.bodies[*o.other].name;
+    if (o.state >= 0) {
+      e["step"] = o.state;
+      const Expectation::Kind kind = s.expect[o.index].kind;
+      if (kind == Expectation::Kind::kCenter || kind == Expectation::Kind::kMoved ||
+          kind == Expectation::Kind::kBounds) {
+        e["actual"] = {json_number(o.position.x), json_number(o.position.y)};
+      } else {
+        e["actual"] = json_number(o.value);
+      }
+    }
+    e["error"] = json_number(o.error);
+    e["pass"] = o.pass;
+    entries.push_back(std::move(e));
+  }
+  j["entries"] = std::move(entries);
+  return j;
+}
+
 }  // namespace
 
 ordered_json json_number(double v) {
@@ -59,6 +125,37 @@ void compare(RunReport& report) {
   }
 }
 
+namespace {
+
+std::string expect_cell(const EngineRun& run) {
+  if (!run.expect) return "-";
+  return (run.expect->pass ? "pass " : "FAIL ") + fmt_g(run.expect->max_error);
+}
+
+// The engines that meet every expectation, and those that miss some, by label.
+void print_expectation_summary(std::ostream& out, const RunReport& r, const EngineRun* ref) {
+  const Scene& s = *r.scene;
+  std::string met, missed;
+  auto note = [&](const EngineRun& run) {
+    if (!run.expect) return;
+    std::string& list = run.expect->pass ? met : missed;
+    list += (list.empty() ? "" : ", ") + short_name(run.engine) + (&run == ref ? " (ref)" : "");
+  };
+  for (const EngineRun& run : r.runs)
+    note(run);
+  if (r.reference) note(*r.reference);
+  out << "\nexpectations (" << s.expect.size() << (s.expect.size() == 1 ? " entry" : " entries")
+      << "): met by " << (met.empty() ? "no engine" : met);
+  if (!missed.empty()) out << "; missed by " << missed;
+  out << "\n";
+  if (ref && ref->expect && !ref->expect->pass) {
+    out << "note: the reference " << short_name(ref->engine)
+        << " misses the expectations: the vs-ref columns measure distance from it, not error\n";
+  }
+}
+
+}  // namespace
+
 void print_run_table(std::ostream& out, const RunReport& r) {
   const Scene& s = *r.scene;
   out << "scene " << s.name << ": " << s.bodies.size() << " bodies, " << s.steps << " steps of "
@@ -66,23 +163,31 @@ void print_run_table(std::ostream& out, const RunReport& r) {
   if (!r.reference_spec.empty()) out << "; reference " << short_name(r.reference_spec);
   out << "\n\n";
   const bool expect = !s.expect.empty();
-  std::vector<std::string> header = {"engine",    "ms/step",         "x ref",     "err max m",
-                                     "err rms m", "EFD/body-step m", "max pen m", "stable"};
+  const bool chain = std::any_of(r.runs.begin(), r.runs.end(),
+                                 [](const EngineRun& run) { return run.chain.has_value(); });
+  std::vector<std::string> header = {"engine", "ms/step", "x ref"};
   if (expect) header.push_back("expect");
+  for (const char* h : {"vs ref max m", "vs ref rms m", "EFD/body-step m", "max pen m", "peak m/s"})
+    header.push_back(h);
+  if (chain) header.insert(header.end(), {"crushes", "budget"});
+  header.insert(header.end(), {"stable", "verdict"});
   TextTable t(header);
   auto add = [&](const EngineRun& run, bool is_reference) {
     const Comparison* c = comparison_of(r, run);
     std::vector<std::string> row = {short_name(run.engine) + (is_reference ? " (ref)" : ""),
                                     fmt_ms(run.timing.median_ms),
-                                    c ? fmt_g(c->speedup, 3) : (is_reference ? "1" : "-"),
-                                    c ? fmt_g(c->error.max) : (is_reference ? "0" : "-"),
-                                    c ? fmt_g(c->error.rms) : (is_reference ? "0" : "-"),
-                                    opt(run.metrics.efd_per_body_step),
-                                    opt(run.metrics.max_penetration),
-                                    yes_no(run.stable())};
-    if (expect)
-      row.push_back(
-          run.expect ? (run.expect->pass ? "pass " : "FAIL ") + fmt_g(run.expect->max_error) : "-");
+                                    c ? fmt_g(c->speedup, 3) : (is_reference ? "1" : "-")};
+    if (expect) row.push_back(expect_cell(run));
+    row.insert(row.end(), {c ? fmt_g(c->error.max) : (is_reference ? "0" : "-"),
+                           c ? fmt_g(c->error.rms) : (is_reference ? "0" : "-"),
+                           opt(run.metrics.efd_per_body_step), opt(run.metrics.max_penetration),
+                           opt(run.metrics.peak_speed)});
+    if (chain) {
+      row.push_back(run.chain ? std::to_string(run.chain->crush_events) : "-");
+      row.push_back(run.chain ? std::to_string(run.chain->budget_hits) : "-");
+    }
+    row.push_back(yes_no(run.stable()));
+    row.push_back(run.verdict ? to_string(run.verdict->worst) : "-");
     t.add(row);
   };
   const EngineRun* ref = reference_run(r);
@@ -90,6 +195,21 @@ void print_run_table(std::ostream& out, const RunReport& r) {
     add(run, &run == ref);
   if (r.reference) add(*r.reference, true);
   t.print(out);
+  if (expect) print_expectation_summary(out, r, ref);
+  // What each verdict other than ok rests on.
+  bool first = true;
+  auto explain = [&](const EngineRun& run) {
+    if (!run.verdict || run.verdict->ok()) return;
+    if (first) out << "\n";
+    first = false;
+    out << short_name(run.engine) << ": " << run.verdict->str();
+    if (run.verdict->findings.size() > 1)
+      out << " (+" << run.verdict->findings.size() - 1 << " more in the JSON)";
+    out << "\n";
+  };
+  for (const EngineRun& run : r.runs)
+    explain(run);
+  if (r.reference) explain(*r.reference);
 }
 
 ordered_json run_json(const RunReport& r) {
@@ -100,12 +220,21 @@ ordered_json run_json(const RunReport& r) {
   if (!s.description.empty()) j["scene"]["description"] = s.description;
   // Sizes and kinds in scene order, so that tools can draw the final states.
   ordered_json half = ordered_json::array(), kinds = ordered_json::array();
+  ordered_json names = ordered_json::array();
   for (const SceneBody& b : s.bodies) {
     half.push_back({b.half_extents.x, b.half_extents.y});
     kinds.push_back(to_string(b.kind));
+    names.push_back(b.name);
   }
   j["scene"]["half_extents"] = std::move(half);
   j["scene"]["kinds"] = std::move(kinds);
+  j["scene"]["names"] = std::move(names);
+  if (!s.expect.empty()) {
+    j["scene"]["expect"] = ordered_json::array();
+    for (const Expectation& e : s.expect)
+      j["scene"]["expect"].push_back(expectation_json(s, e));
+  }
+  if (s.penetration_tolerance) j["scene"]["penetration_tolerance"] = *s.penetration_tolerance;
   if (!r.reference_spec.empty()) j["reference"] = r.reference_spec;
   auto run_entry = [&](const EngineRun& run) {
     ordered_json e;
@@ -124,6 +253,7 @@ ordered_json run_json(const RunReport& r) {
     e["ms_per_step"] = {{"median", run.timing.median_ms},
                         {"mean", run.timing.mean_ms},
                         {"p95", run.timing.p95_ms},
+                        {"spread", run.timing.spread_ms},
                         {"samples", run.timing.samples}};
     e["setup_ms"] = run.timing.setup_ms;
     ordered_json m;
@@ -134,12 +264,31 @@ ordered_json run_json(const RunReport& r) {
                                        {"max_step", json_number(*mt.efd_max_step)}};
     }
     if (mt.max_penetration) m["max_penetration"] = json_number(*mt.max_penetration);
+    if (mt.worst_overlap) {
+      const PairOverlap& w = *mt.worst_overlap;
+      m["worst_overlap"] = {{"bodies", {s.bodies[w.a].name, s.bodies[w.b].name}},
+                            {"depth", json_number(w.depth)},
+                            {"tolerance", json_number(w.tolerance)},
+                            {"step", w.step}};
+    }
     if (mt.peak_speed) {
       m["peak_speed"] = json_number(*mt.peak_speed);
+      m["peak_speed_body"] = s.bodies[mt.peak_speed_body].name;
+      m["peak_speed_step"] = mt.peak_speed_step;
       m["speed_bound"] = json_number(*mt.speed_bound);
       m["finite"] = *mt.finite;
       m["in_bounds"] = *mt.in_bounds;
+      m["escaped"] = ordered_json::array();
+      for (const std::size_t b : mt.escaped)
+        m["escaped"].push_back(s.bodies[b].name);
       m["blow_up"] = *mt.blow_up;
+      m["tunnelled"] = *mt.tunnelled;
+      if (mt.tunnel) {
+        m["tunnelling"] = {{"body", s.bodies[mt.tunnel->body].name},
+                           {"through", s.bodies[mt.tunnel->through].name},
+                           {"step", mt.tunnel->step},
+                           {"count", mt.tunnel_count}};
+      }
     }
     if (const auto stable = run.stable()) m["stable"] = *stable;
     m["hash"] = hex(run.hash);
@@ -152,8 +301,17 @@ ordered_json run_json(const RunReport& r) {
                           {"passes", run.chain->passes_per_step},
                           {"contacts", run.chain->contacts_per_step}};
     }
-    if (run.expect)
-      e["expect"] = {{"max_error", json_number(run.expect->max_error)}, {"pass", run.expect->pass}};
+    e["degraded_steps"] = run.degraded_steps;
+    if (run.expect) e["expect"] = expect_result_json(s, *run.expect);
+    if (run.verdict) {
+      ordered_json findings = ordered_json::array();
+      for (const Finding& f : run.verdict->findings)
+        findings.push_back({{"class", to_string(f.what)}, {"detail", f.detail}});
+      e["verdict"] = {
+          {"class", to_string(run.verdict->worst)},
+          {"detail", run.verdict->findings.empty() ? "" : run.verdict->findings[0].detail},
+          {"findings", std::move(findings)}};
+    }
     return e;
   };
   j["runs"] = ordered_json::array();
@@ -175,7 +333,8 @@ ordered_json run_json(const RunReport& r) {
 void write_run_csv(std::ostream& out, const RunReport& r) {
   out << "scene,engine,bodies,steps,dt,ms_median,ms_mean,ms_p95,setup_ms,err_max,err_rms,efd_total,"
          "efd_per_body_step,efd_max_step,max_penetration,peak_speed,finite,in_bounds,stable,hash,"
-         "resolve_calls,max_depth,budget_hits,crush_events,expect_max_error,expect_pass\n";
+         "resolve_calls,max_depth,budget_hits,crush_events,expect_max_error,expect_pass,verdict,"
+         "degraded_steps,tunnelled,escaped\n";
   auto num = [](const std::optional<double>& v) { return v ? fmt_g(*v, 9) : std::string(); };
   auto flag = [](const std::optional<bool>& v) {
     return v ? std::string(*v ? "1" : "0") : std::string();
@@ -198,7 +357,10 @@ void write_run_csv(std::ostream& out, const RunReport& r) {
       out << ",,,";
     }
     out << ',' << (run.expect ? fmt_g(run.expect->max_error, 9) : "") << ','
-        << (run.expect ? (run.expect->pass ? "1" : "0") : "") << '\n';
+        << (run.expect ? (run.expect->pass ? "1" : "0") : "") << ','
+        << (run.verdict ? to_string(run.verdict->worst) : "") << ',' << run.degraded_steps << ','
+        << flag(m.tunnelled) << ',' << (m.peak_speed ? std::to_string(m.escaped.size()) : "")
+        << '\n';
   };
   for (const EngineRun& run : r.runs)
     row(run);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <ostream>
 
@@ -24,6 +25,10 @@ Timing summarize(std::vector<double>& samples, double setup_ms) {
   const std::size_t n = samples.size();
   t.median_ms = n % 2 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]);
   t.mean_ms = std::accumulate(samples.begin(), samples.end(), 0.0) / static_cast<double>(n);
+  auto quantile = [&](double q) {
+    return samples[std::min(n - 1, static_cast<std::size_t>(q * static_cast<double>(n - 1) + 0.5))];
+  };
+  t.spread_ms = 0.5 * (quantile(0.75) - quantile(0.25));
   t.p95_ms = samples[std::min(
       n - 1, static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(n))) - 1)];
   return t;
@@ -33,11 +38,13 @@ Timing summarize(std::vector<double>& samples, double setup_ms) {
 
 std::optional<bool> EngineRun::stable() const {
   if (!metrics.finite) return std::nullopt;
-  const bool budget_ok = !chain || chain->budget_hits == 0;
-  return *metrics.finite && *metrics.in_bounds && !*metrics.blow_up && budget_ok;
+  return *metrics.finite && *metrics.in_bounds && !*metrics.blow_up && !*metrics.tunnelled &&
+         degraded_steps == 0;
 }
 
 TraceWriter::TraceWriter(std::ostream& out) : out_(out) {
+  // Every digit a double holds: far from the origin six significant digits lose whole metres.
+  out_.precision(std::numeric_limits<double>::max_digits10);
   out_ << "engine,step,time,body,x,y,vx,vy,angle,displacement,penetration\n";
 }
 
@@ -58,12 +65,24 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
   const double setup_ms = ms_since(t0);
 
   const std::size_t n = scene.bodies.size();
-  const bool observe = options.metrics.any() || options.trace != nullptr;
+  // Metrics and traces look at every step; expectations only at the states they name.
+  const bool every_step = options.metrics.any() || options.trace != nullptr;
+  ExpectationCheck expect(scene);
   std::optional<MetricsRecorder> recorder;
+  if (every_step) recorder.emplace(scene, options.metrics);
   BodyState before(n), after(n);
-  if (observe) {
-    recorder.emplace(scene, options.metrics);
+  int before_state = -1;  // the state `before` holds, -1: none
+  auto check = [&](int k, const BodyState& state, const PairOverlap* deepest) {
+    const BodyState* previous = before_state == k - 1 ? &before : nullptr;
+    expect.observe(k, state, previous, deepest);
+  };
+  if (every_step || expect.needs_state(0)) {
     engine->read_state(before);
+    before_state = 0;
+    if (!expect.empty() && expect.needs_state(0)) {
+      const PairOverlap deepest = MetricsRecorder::deepest_overlap(scene, before, 0);
+      expect.observe(0, before, nullptr, expect.needs_depth(0) ? &deepest : nullptr);
+    }
   }
   const chain::StepStats* stats = engine->chain_stats();
   ChainRunStats chain_totals;
@@ -86,17 +105,28 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
       chain_totals.max_depth = std::max(chain_totals.max_depth, stats->max_depth);
       chain_totals.budget_hits += stats->budget_hits;
       chain_totals.crush_events += stats->crush_events;
+      run.degraded_steps += stats->budget_hits > 0;
     }
-    if (observe) {
+    const int k = step + 1;  // the state after this step
+    if (every_step || expect.needs_state(k)) {
       engine->read_state(after);
-      recorder->observe(before, after, options.trace != nullptr);
-      if (options.trace) {
-        options.trace->write(run.engine, step + 1, (step + 1) * scene.dt, after,
-                             recorder->step_displacement(), recorder->step_penetration());
+      const bool depth = expect.needs_depth(k);
+      if (recorder) {
+        recorder->observe(before, after, k, options.trace != nullptr, depth);
+        if (options.trace) {
+          options.trace->write(run.engine, k, k * scene.dt, after, recorder->step_displacement(),
+                               recorder->step_penetration());
+        }
+        if (expect.needs_state(k)) check(k, after, depth ? &recorder->last_deepest() : nullptr);
+      } else {
+        const PairOverlap deepest =
+            depth ? MetricsRecorder::deepest_overlap(scene, after, k) : PairOverlap{};
+        check(k, after, depth ? &deepest : nullptr);
       }
       std::swap(before, after);
+      before_state = k;
     }
-    if (options.progress && (step + 1) % report_every == 0) options.progress(step + 1, scene.steps);
+    if (options.progress && k % report_every == 0) options.progress(k, scene.steps);
   }
 
   BodyState last(n);
@@ -106,7 +136,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
   run.hash = position_hash(run.final_positions);
   run.timing = summarize(samples, setup_ms);
   if (options.metrics.any()) {
-    run.metrics = recorder->result();
+    run.metrics = recorder->result(last);
     run.metrics_computed = true;
   }
   if (stats) {
@@ -116,16 +146,8 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     chain_totals.contacts_per_step = contacts / steps;
     run.chain = chain_totals;
   }
-  if (!scene.expect.empty()) {
-    ExpectResult r;
-    for (const Expectation& e : scene.expect) {
-      const Vec2d p = run.final_positions[e.body];
-      const double err = std::hypot(p.x - e.center.x, p.y - e.center.y);
-      r.max_error = std::isfinite(err) ? std::max(r.max_error, err) : HUGE_VAL;
-      if (!(err <= e.tolerance)) r.pass = false;
-    }
-    run.expect = r;
-  }
+  if (!expect.empty()) run.expect = expect.result();
+  run.verdict = judge(scene, run.metrics, run.expect, run.degraded_steps);
   return run;
 }
 

@@ -1,12 +1,15 @@
 // Runs one engine on one scene: builds it (timed as setup), steps it (each step timed on the
-// steady clock, the first excluded), records the metrics that were asked for, and checks the
-// scene's expectations. Metrics and traces are computed between steps, outside the timer.
+// steady clock, the first excluded), records the metrics that were asked for, checks the scene's
+// expectations (always: they are the truth a run is judged by) and judges the run. Metrics,
+// expectations and traces are computed between steps, outside the timer.
 #pragma once
 
 #include "engine.h"
 #include "engine_spec.h"
+#include "expectations.h"
 #include "metrics.h"
 #include "scene.h"
+#include "verdict.h"
 
 #include <atomic>
 #include <cstdint>
@@ -22,6 +25,9 @@ struct Timing {
   double median_ms = 0.0;
   double mean_ms = 0.0;
   double p95_ms = 0.0;
+  // Half the interquartile range of the step times: how far apart two medians must be before one
+  // engine can be called faster than another.
+  double spread_ms = 0.0;
   double setup_ms = 0.0;
   int samples = 0;
 };
@@ -36,11 +42,6 @@ struct ChainRunStats {
   std::uint64_t crush_events = 0;
 };
 
-struct ExpectResult {
-  double max_error = 0.0;
-  bool pass = true;
-};
-
 struct EngineRun {
   std::string engine;  // canonical spec
   std::vector<Vec2d> final_positions;
@@ -50,10 +51,13 @@ struct EngineRun {
   bool metrics_computed = false;
   std::uint64_t hash = 0;
   std::optional<ChainRunStats> chain;
+  std::uint64_t degraded_steps = 0;  // steps the engine cut short (the chain's budget)
   std::optional<ExpectResult> expect;
-  bool interrupted = false;  // stopped before its last step
+  std::optional<Verdict> verdict;  // judged when stability and penetration were measured
+  bool interrupted = false;        // stopped before its last step
 
-  // Finite, in bounds, no blow-up, and no chain cut by its budget; empty when not measured.
+  // Finite, no body escaped, no blow-up, no body through another, and no step cut short; empty
+  // when not measured.
   std::optional<bool> stable() const;
 };
 

@@ -5,7 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <unordered_map>
@@ -259,6 +262,109 @@ void read_body(Reader& r, const json& j, const std::string& at, std::size_t inde
   }
 }
 
+// One bound vector of an expectation: [x, y] with null for an axis left free.
+void read_bound(Reader& r, const json& v, const std::string& path, std::optional<double>& x,
+                std::optional<double>& y) {
+  if (!v.is_array() || v.size() != 2) {
+    r.problem(path, std::string("must be an array of two numbers or nulls, got ") +
+                        Reader::type_name(v) +
+                        (v.is_array() ? " of " + std::to_string(v.size()) : ""));
+    return;
+  }
+  std::optional<double>* out[2] = {&x, &y};
+  for (std::size_t a = 0; a < 2; ++a) {
+    double d = 0.0;
+    if (!v[a].is_null() && r.number(v[a], path + "[" + std::to_string(a) + "]", d)) *out[a] = d;
+  }
+}
+
+// An `expect` entry states one fact: center or moved (with tolerance), min/max, at_rest or
+// no_overlap.
+void read_expectation(Reader& r, const json& j, const std::string& at,
+                      const std::unordered_map<std::string, std::size_t>& by_name, Scene& s) {
+  using Kind = Expectation::Kind;
+  if (!j.is_object()) {
+    r.problem(at, std::string("must be an object, got ") + Reader::type_name(j));
+    return;
+  }
+  r.only_keys(j, at,
+              {"body", "center", "moved", "tolerance", "min", "max", "at_rest", "no_overlap",
+               "from_step", "to_step"});
+  const bool center = j.contains("center"), moved = j.contains("moved");
+  const bool bounds = j.contains("min") || j.contains("max");
+  const bool at_rest = j.contains("at_rest"), no_overlap = j.contains("no_overlap");
+  const int kinds = int{center} + int{moved} + int{bounds} + int{at_rest} + int{no_overlap};
+  if (kinds == 0) {
+    r.problem(at,
+              "states nothing: give center or moved (with tolerance), min/max, at_rest or "
+              "no_overlap");
+    return;
+  }
+  if (kinds > 1) {
+    r.problem(at,
+              "states more than one fact: give one of center, moved, min/max, at_rest, "
+              "no_overlap per entry (split it into several entries)");
+    return;
+  }
+  Expectation e;
+  e.kind = center    ? Kind::kCenter
+           : moved   ? Kind::kMoved
+           : bounds  ? Kind::kBounds
+           : at_rest ? Kind::kAtRest
+                     : Kind::kNoOverlap;
+  if (no_overlap) {
+    if (j.contains("body"))
+      r.problem(at + ".body", "no_overlap holds for every pair of bodies: remove body");
+  } else if (!j.contains("body")) {
+    r.problem(at + ".body", center ? "is required: the name of a body"
+                                   : "is required: the name of a body, or \"*\" for every "
+                                     "dynamic body");
+  } else {
+    std::string name;
+    if (r.string(j["body"], at + ".body", name)) {
+      if (name == "*") {
+        if (center) {
+          r.problem(at + ".body", "\"*\" cannot have one expected centre: name a body");
+        } else {
+          e.body = Expectation::kEveryDynamic;
+        }
+      } else if (const auto it = by_name.find(name); it == by_name.end()) {
+        r.problem(at + ".body", "no body is named \"" + name + "\"");
+      } else {
+        e.body = it->second;
+      }
+    }
+  }
+  if (center) r.vec2(j["center"], at + ".center", e.center);
+  if (moved) r.vec2(j["moved"], at + ".moved", e.moved);
+  if (center || moved) {
+    if (!j.contains("tolerance")) {
+      r.problem(at + ".tolerance", std::string("is required with ") +
+                                       (center ? "center" : "moved") + ": the allowed distance, m");
+    } else {
+      r.number(j["tolerance"], at + ".tolerance", e.tolerance);
+    }
+  } else if (j.contains("tolerance")) {
+    r.problem(at + ".tolerance",
+              "belongs to center and moved; min/max, at_rest and no_overlap "
+              "carry their own limit");
+  }
+  if (j.contains("min")) read_bound(r, j["min"], at + ".min", e.min_x, e.min_y);
+  if (j.contains("max")) read_bound(r, j["max"], at + ".max", e.max_x, e.max_y);
+  if (at_rest) r.number(j["at_rest"], at + ".at_rest", e.speed);
+  if (no_overlap) r.number(j["no_overlap"], at + ".no_overlap", e.depth);
+  int step = 0;
+  if (j.contains("from_step") &&
+      r.integer(j["from_step"], at + ".from_step", 0, limits::kMaxSteps, step)) {
+    e.from_step = step;
+  }
+  if (j.contains("to_step") &&
+      r.integer(j["to_step"], at + ".to_step", 0, limits::kMaxSteps, step)) {
+    e.to_step = step;
+  }
+  s.expect.push_back(e);
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source) {
@@ -280,7 +386,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   }
   r.only_keys(root, "",
               {"schema", "name", "description", "gravity", "dt", "steps", "rotation", "friction",
-               "restitution", "bodies", "drivers", "expect"});
+               "restitution", "bodies", "drivers", "expect", "penetration_tolerance"});
   int schema = 1;
   if (root.contains("schema") && r.integer(root["schema"], "schema", 0, 1000, schema) &&
       schema != 1) {
@@ -366,25 +472,18 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     const json& expect = root["expect"];
     if (!expect.is_array()) {
       r.problem("expect", std::string("must be an array, got ") + Reader::type_name(expect));
+    } else if (expect.size() > limits::kMaxExpectations) {
+      r.problem("expect",
+                "holds more than " + std::to_string(limits::kMaxExpectations) + " entries");
     } else {
-      for (std::size_t i = 0; i < expect.size() && i < limits::kMaxBodies; ++i) {
-        const std::string at = "expect[" + std::to_string(i) + "]";
-        const json& j = expect[i];
-        if (!j.is_object()) {
-          r.problem(at, std::string("must be an object, got ") + Reader::type_name(j));
-          continue;
-        }
-        r.only_keys(j, at, {"body", "center", "tolerance"});
-        Expectation e;
-        for (const char* required : {"body", "center", "tolerance"}) {
-          if (!j.contains(required)) r.problem(at + "." + required, "is required");
-        }
-        if (j.contains("body")) body_ref(j["body"], at + ".body", e.body);
-        if (j.contains("center")) r.vec2(j["center"], at + ".center", e.center);
-        if (j.contains("tolerance")) r.number(j["tolerance"], at + ".tolerance", e.tolerance);
-        s.expect.push_back(e);
-      }
+      for (std::size_t i = 0; i < expect.size(); ++i)
+        read_expectation(r, expect[i], "expect[" + std::to_string(i) + "]", by_name, s);
     }
+  }
+  if (root.contains("penetration_tolerance")) {
+    double v = 0.0;
+    if (r.number(root["penetration_tolerance"], "penetration_tolerance", v))
+      s.penetration_tolerance = v;
   }
   // Range rules shared with the built-in scenes; a value that already failed its type check is
   // not reported twice.
@@ -395,9 +494,45 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   return s;
 }
 
+std::string set_run_length(Scene& scene, int steps, const std::string& source) {
+  if (steps == scene.steps) return {};
+  const int own = scene.steps;
+  scene.steps = steps;
+  // Checked before any entry is dropped, so that messages name entries as the file numbers them.
+  std::string problems;
+  for (const SceneIssue& issue : validate(scene)) {
+    problems += (problems.empty() ? "" : "\n") + source + ": " + issue.path + ": " + issue.reason +
+                " (with --steps " + std::to_string(steps) + ")";
+  }
+  if (!problems.empty()) throw InputError(problems);
+  const std::size_t before = scene.expect.size();
+  std::vector<Expectation> kept;
+  for (const Expectation& e : scene.expect) {
+    if (e.windowed()) kept.push_back(e);
+  }
+  scene.expect = std::move(kept);
+  const std::size_t dropped = before - scene.expect.size();
+  if (dropped == 0) return {};
+  return std::to_string(dropped) + " expectation(s) of " + source +
+         " state where bodies end at step " + std::to_string(own) + "; the run ends at step " +
+         std::to_string(steps) + ", so they are not checked";
+}
+
 Scene load_scene_file(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (status.type() == std::filesystem::file_type::not_found) {
+    throw InputError(path + ": no such file");
+  }
+  if (status.type() == std::filesystem::file_type::directory) {
+    throw InputError(path + ": is a directory, not a scene file");
+  }
+  errno = 0;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open the file");
+  if (!in) {
+    throw InputError(path + ": cannot open the file" +
+                     (errno != 0 ? " (" + std::string(std::strerror(errno)) + ")" : ""));
+  }
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError(path + ": cannot read the file");

@@ -13,4 +13,9 @@ Scene load_scene_file(const std::string& path);
 // The same, from text already in memory; `source` names it in messages.
 Scene parse_scene(const std::string& text, const std::string& source);
 
+// Runs a scene file's scene for `steps` steps instead of its own. Expectations stated for its last
+// step say nothing about another one and are dropped (the returned note says how many); windowed
+// ones are kept, and a window beyond `steps` is refused (InputError naming the entry).
+std::string set_run_length(Scene& scene, int steps, const std::string& source);
+
 }  // namespace chainbench

@@ -102,8 +102,12 @@ Scene make_scene(std::string_view name, const std::vector<std::string>& sets) {
   if (const double offset = values.get("offset"); offset != 0.0) {
     for (SceneBody& b : scene.bodies)
       b.center.x += offset, b.center.y += offset;
-    for (Expectation& e : scene.expect)
+    for (Expectation& e : scene.expect) {
       e.center.x += offset, e.center.y += offset;
+      for (std::optional<double>* bound : {&e.min_x, &e.min_y, &e.max_x, &e.max_y}) {
+        if (*bound) **bound += offset;
+      }
+    }
   }
   return scene;
 }
@@ -136,6 +140,66 @@ std::string label(std::string_view prefix, int a, int b) {
   s.push_back('_');
   s.append(std::to_string(b));
   return s;
+}
+
+Expectation expect_center(std::size_t body, Vec2d center, double tolerance) {
+  Expectation e;
+  e.kind = Expectation::Kind::kCenter;
+  e.body = body;
+  e.center = center;
+  e.tolerance = tolerance;
+  return e;
+}
+
+Expectation expect_moved(std::size_t body, Vec2d moved, double tolerance) {
+  Expectation e;
+  e.kind = Expectation::Kind::kMoved;
+  e.body = body;
+  e.moved = moved;
+  e.tolerance = tolerance;
+  return e;
+}
+
+Expectation expect_bounds(std::size_t body, std::optional<double> min_x,
+                          std::optional<double> min_y, std::optional<double> max_x,
+                          std::optional<double> max_y) {
+  Expectation e;
+  e.kind = Expectation::Kind::kBounds;
+  e.body = body;
+  e.min_x = min_x, e.min_y = min_y, e.max_x = max_x, e.max_y = max_y;
+  return e;
+}
+
+Expectation expect_no_overlap(double depth, std::optional<int> from_step) {
+  Expectation e;
+  e.kind = Expectation::Kind::kNoOverlap;
+  e.depth = depth;
+  e.from_step = from_step;
+  return e;
+}
+
+void expect_at_rest_where_built(Scene& s) {
+  double smallest = HUGE_VAL;
+  for (const SceneBody& b : s.bodies) {
+    if (b.kind == BodyKind::kDynamic)
+      smallest = std::min({smallest, 2.0 * b.half_extents.x, 2.0 * b.half_extents.y});
+  }
+  if (smallest < HUGE_VAL)
+    s.expect.push_back(expect_moved(kEvery, {0.0, 0.0}, kVisible * smallest));
+}
+
+double driven_push_distance(double v, double pusher, double row, double dt, int steps) {
+  const double r = row / (pusher + row);
+  return v * dt * (steps - (row / pusher) * (1.0 - std::pow(r, steps)));
+}
+
+void expect_squeezed(Scene& s, std::size_t body, int axis, double low, double high, double size) {
+  const double gap = std::max(high - low, 0.0);
+  const double forced = 0.5 * std::max(size - gap, 0.0);
+  s.penetration_tolerance = forced + kVisible * size;
+  const double lo = std::min(low, high), hi = std::max(low, high);
+  s.expect.push_back(axis == 0 ? expect_bounds(body, lo, std::nullopt, hi, std::nullopt)
+                               : expect_bounds(body, std::nullopt, lo, std::nullopt, hi));
 }
 
 }  // namespace build

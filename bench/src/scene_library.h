@@ -5,6 +5,7 @@
 #include "scene.h"
 
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -62,6 +63,33 @@ std::size_t box(Scene& s, std::string name, BodyKind kind, Vec2d center, Vec2d h
 // GCC 12 misreports under -Wrestrict at -O3).
 std::string label(std::string_view prefix, int a);
 std::string label(std::string_view prefix, int a, int b);
+
+// What a recipe states as its right answer (scene.h, Expectation).
+// The share of a box's size by which a result may differ before it is visibly wrong: the same 5%
+// the default penetration tolerance allows.
+inline constexpr double kVisible = 0.05;
+inline constexpr std::size_t kEvery = Expectation::kEveryDynamic;
+Expectation expect_center(std::size_t body, Vec2d center, double tolerance);
+// The body (or kEvery) ends within `tolerance` of its start moved by `moved`.
+Expectation expect_moved(std::size_t body, Vec2d moved, double tolerance);
+Expectation expect_bounds(std::size_t body, std::optional<double> min_x,
+                          std::optional<double> min_y, std::optional<double> max_x,
+                          std::optional<double> max_y);
+Expectation expect_no_overlap(double depth, std::optional<int> from_step = std::nullopt);
+// Every dynamic body stays where it was built, within kVisible of the smallest dynamic box.
+void expect_at_rest_where_built(Scene& s);
+
+// How far a row of mass `row` moves when a body of mass `pusher` touching it has its velocity set
+// to v at the start of each of `steps` steps of dt and every push shares momentum (perfectly
+// inelastic): in step k both move at u_k = (pusher v + row u_{k-1}) / (pusher + row), so they
+// travel v steps dt less a lag of v dt (row / pusher) (1 - r^steps), r = row / (pusher + row).
+double driven_push_distance(double v, double pusher, double row, double dt, int steps);
+
+// A box of size `size` along `axis` squeezed between an immovable face at `low` and one at
+// `high` (high - low < size): no place is right for it, and the least-penetrating one centres it
+// with each face (size - (high - low)) / 2 deep. States that its centre ends between the faces and
+// sets the scene's penetration tolerance to that forced overlap plus kVisible of the box.
+void expect_squeezed(Scene& s, std::size_t body, int axis, double low, double high, double size);
 }  // namespace build
 
 std::vector<SceneRecipe> stacking_scenes();

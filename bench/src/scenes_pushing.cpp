@@ -22,13 +22,24 @@ Scene push_row_common(const SceneParams& p, const char* name) {
   return s;
 }
 
+// The pusher and the row move as one, a little behind the drive while the row takes up speed
+// (driven_push_distance).
+void expect_driven_row(Scene& s, const SceneParams& p, double row_mass) {
+  const double d = build::driven_push_distance(p.get("speed"), p.get("pusher_mass"), row_mass,
+                                               p.get("dt"), p.count("steps"));
+  s.expect.push_back(build::expect_moved(build::kEvery, {d, 0.0}, build::kVisible));
+}
+
 Scene push_row(const SceneParams& p) {
-  return push_row_common(p, "push_row");
+  Scene s = push_row_common(p, "push_row");
+  expect_driven_row(s, p, p.count("n"));
+  return s;
 }
 
 Scene push_into_wall(const SceneParams& p) {
   Scene s = push_row_common(p, "push_into_wall");
   box(s, "wall", BodyKind::kStatic, {p.count("n") + 1.0, 0.0}, {0.5, 2.0});
+  build::expect_at_rest_where_built(s);  // rigid boxes against a wall: however hard the push
   return s;
 }
 
@@ -44,6 +55,9 @@ Scene push_stack(const SceneParams& p) {
   for (int i = 0; i < height; ++i)
     box(s, build::label("box", i), BodyKind::kDynamic, {1.0, 0.5 + i}, {0.5, 0.5});
   s.drivers.push_back({pusher, {p.get("speed"), 0.0}, 0, limits::kMaxSteps});
+  // The pusher is as tall as the stack and the floor is frictionless: every box is pushed along
+  // with it, none rides up or falls behind.
+  expect_driven_row(s, p, height);
   return s;
 }
 
@@ -56,6 +70,13 @@ Scene squeeze(const SceneParams& p) {
   const std::size_t lift =
       box(s, "lift", BodyKind::kKinematic, {0.0, 1.5 + p.get("gap")}, {1.5, 0.5});
   s.bodies[lift].velocity = {0.0, -p.get("speed")};
+  // The lift's face ends `gap - speed t` above the box's top; once lower, the box is squeezed.
+  const double lift_bottom = 1.0 + p.get("gap") - p.get("speed") * p.get("dt") * p.count("steps");
+  if (lift_bottom >= 1.0) {
+    build::expect_at_rest_where_built(s);
+  } else {
+    build::expect_squeezed(s, 1, 1, 0.0, lift_bottom, 1.0);
+  }
   return s;
 }
 
@@ -89,12 +110,12 @@ std::vector<SceneRecipe> pushing_scenes() {
        120},
       {"squeeze",
        "pushing",
-       "a box between the floor and a descending kinematic lift",
+       "a box between the floor and a descending kinematic lift (it ends half its height)",
        {{"speed", 0.5, 0, 1000, false, "lift speed, m/s"},
         {"gap", 0.5, 0, 1000, false, "lift start above the box, m"}},
        squeeze,
        [](const SceneParams&) { return std::size_t{3}; },
-       180},
+       120},
   };
 }
 

@@ -28,9 +28,13 @@ Scene seeded(const char* name) {
 // 6eb2bf7: three 50 px boxes staggered 20 px, the lowest static.
 Scene seed_stack(const SceneParams&) {
   Scene s = seeded("seed_stack");
-  px_box(s, "box0", BodyKind::kDynamic, 100, 200, 50, 50);
-  px_box(s, "box1", BodyKind::kDynamic, 120, 270, 50, 50);
+  const std::size_t top = px_box(s, "box0", BodyKind::kDynamic, 100, 200, 50, 50);
+  const std::size_t middle = px_box(s, "box1", BodyKind::kDynamic, 120, 270, 50, 50);
   px_box(s, "base", BodyKind::kStatic, 140, 340, 50, 50);
+  // Upright and frictionless, each box falls straight down onto the one below (they overlap by
+  // 30 px): box1 rests on the base's top (y = -6.8 m), box0 on box1, neither moves sideways.
+  s.expect.push_back(build::expect_center(middle, {2.9, -6.3}, build::kVisible));
+  s.expect.push_back(build::expect_center(top, {2.5, -5.3}, build::kVisible));
   return s;
 }
 
@@ -45,6 +49,17 @@ Scene seed_squeeze(const SceneParams&) {
   px_box(s, "ceiling", BodyKind::kStatic, 100, -100, 50, 50);
   const std::size_t platform = px_box(s, "platform", BodyKind::kKinematic, 100, 200, 50, 50);
   s.bodies[platform].velocity = {0.0, 60.0 / kPxPerMetre};  // 1 px/frame up
+  // The untouched block stays put. The player lands on the platform and rides it straight up,
+  // keeping its x, until the platform's top comes within its height of the ceiling at 3.5 s;
+  // after that the platform ends inside the ceiling and no place is right for it.
+  s.expect.push_back(build::expect_moved(block, {0.0, 0.0}, build::kVisible));
+  Expectation rides = build::expect_bounds(0, 2.2 - build::kVisible * 0.4, std::nullopt,
+                                           2.2 + build::kVisible * 0.4, std::nullopt);
+  rides.from_step = 0;
+  rides.to_step = 200;
+  s.expect.push_back(rides);
+  // Squeezed to nothing, the 0.8 m player overlaps one of them by up to half its height.
+  s.penetration_tolerance = 0.4 + build::kVisible * 0.4;
   return s;
 }
 
@@ -57,10 +72,18 @@ Scene seed_falling_row(const SceneParams&) {
   px_box(s, "floor", BodyKind::kStatic, 0, 416, 640, 32);
   px_box(s, "wall_left", BodyKind::kStatic, -32, 0, 32, 448);
   px_box(s, "wall_right", BodyKind::kStatic, 640, 0, 32, 448);
-  for (int i = 0; i < 10; ++i)
-    px_box(s, build::label("low", i), BodyKind::kDynamic, 30 + 60 * i, 100, 50, 50);
-  for (int i = 0; i < 10; ++i)
-    px_box(s, build::label("high", i), BodyKind::kDynamic, 40 + 60 * i, 0, 50, 50);
+  // Each row falls straight down: the low row onto the floor (top at y = -8.32 m), each high box
+  // onto the low box it overlaps by 40 px (its other neighbour is 10 px away).
+  for (int i = 0; i < 10; ++i) {
+    const std::size_t b =
+        px_box(s, build::label("low", i), BodyKind::kDynamic, 30 + 60 * i, 100, 50, 50);
+    s.expect.push_back(build::expect_center(b, {s.bodies[b].center.x, -7.82}, build::kVisible));
+  }
+  for (int i = 0; i < 10; ++i) {
+    const std::size_t b =
+        px_box(s, build::label("high", i), BodyKind::kDynamic, 40 + 60 * i, 0, 50, 50);
+    s.expect.push_back(build::expect_center(b, {s.bodies[b].center.x, -6.82}, build::kVisible));
+  }
   return s;
 }
 

@@ -23,6 +23,7 @@ Scene stack(const SceneParams& p) {
   for (int i = 0; i < p.count("n"); ++i) {
     box(s, build::label("box", i), BodyKind::kDynamic, {0.0, h + 2.0 * h * i}, {h, h}, 4.0 * h * h);
   }
+  build::expect_at_rest_where_built(s);  // built at rest, box on box: nothing moves
   return s;
 }
 
@@ -45,6 +46,7 @@ Scene pyramid(const SceneParams& p) {
   const double size = p.get("size");
   ground(s, size * base + 2.0);
   add_pyramid(s, "b", base, size, 0.0, 0.0);
+  build::expect_at_rest_where_built(s);
   return s;
 }
 
@@ -62,6 +64,7 @@ Scene many_pyramids(const SceneParams& p) {
                   top);
     }
   }
+  build::expect_at_rest_where_built(s);
   return s;
 }
 
@@ -74,6 +77,7 @@ Scene mass_ratio_stack(const SceneParams& p) {
     box(s, build::label("box", i), BodyKind::kDynamic, {0.0, 0.5 + i}, {0.5, 0.5},
         i == n - 1 ? p.get("ratio") : 1.0);
   }
+  build::expect_at_rest_where_built(s);  // whatever the top weighs, rigid boxes do not give way
   return s;
 }
 
@@ -83,10 +87,17 @@ Scene heavy_on_light(const SceneParams& p) {
   const double size = p.get("size");
   ground(s, size + 10.0);
   const double x = 0.5 * size - 0.5;  // the light boxes sit under the heavy box's edges
-  box(s, "light_left", BodyKind::kDynamic, {-x, 0.5}, {0.5, 0.5}, 1.0);
-  box(s, "light_right", BodyKind::kDynamic, {x, 0.5}, {0.5, 0.5}, 1.0);
-  box(s, "heavy", BodyKind::kDynamic, {0.0, 1.0 + p.get("drop") + 0.5 * size},
-      {0.5 * size, 0.5 * size}, p.get("ratio"));
+  const std::size_t left = box(s, "light_left", BodyKind::kDynamic, {-x, 0.5}, {0.5, 0.5}, 1.0);
+  const std::size_t right = box(s, "light_right", BodyKind::kDynamic, {x, 0.5}, {0.5, 0.5}, 1.0);
+  const std::size_t heavy =
+      box(s, "heavy", BodyKind::kDynamic, {0.0, 1.0 + p.get("drop") + 0.5 * size},
+          {0.5 * size, 0.5 * size}, p.get("ratio"));
+  // Frictionless and upright, the heavy box lands straight down and rests on the light ones,
+  // which the floor holds where they are: its height is set by theirs, so it is judged by their
+  // size.
+  s.expect.push_back(build::expect_moved(left, {0.0, 0.0}, build::kVisible));
+  s.expect.push_back(build::expect_moved(right, {0.0, 0.0}, build::kVisible));
+  s.expect.push_back(build::expect_center(heavy, {0.0, 1.0 + 0.5 * size}, build::kVisible));
   return s;
 }
 
@@ -102,6 +113,13 @@ Scene overlap_recovery(const SceneParams& p) {
           {pitch * (k - 0.5 * (base - row - 1)), 0.5 + pitch * row}, {0.5, 0.5});
     }
   }
+  // Where each box ends is not unique, but by half the run every overlap is gone and no box is
+  // pushed into the floor.
+  s.expect.push_back(build::expect_no_overlap(build::kVisible, p.count("steps") / 2));
+  Expectation above = build::expect_bounds(build::kEvery, std::nullopt, 0.5 - build::kVisible,
+                                           std::nullopt, std::nullopt);
+  above.from_step = 0;
+  s.expect.push_back(above);
   return s;
 }
 
@@ -167,6 +185,9 @@ Scene random_pile(const SceneParams& p) {
   box(s, "wall_right", BodyKind::kStatic, {0.5 * width + 0.5, 0.5 * height}, {0.5, 0.5 * height});
   for (SceneBody& b : boxes)
     s.bodies.push_back(std::move(b));
+  // Upright boxes on horizontal faces: every contact pushes straight up, so even without friction
+  // the pile is in equilibrium and stays as it was dropped.
+  build::expect_at_rest_where_built(s);
   return s;
 }
 

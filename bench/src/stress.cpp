@@ -16,9 +16,10 @@ namespace {
 
 // What a child reports back through its pipe.
 struct Summary {
-  double max_penetration, peak_speed, speed_bound, ms_per_step, probe_x, target_x;
+  double max_penetration, peak_speed, speed_bound, ms_per_step;
   std::uint64_t budget_hits, crush_events;
-  std::uint8_t finite, in_bounds, blow_up;
+  std::uint8_t finite, in_bounds, blow_up, tunnelled, expect_pass, judged;
+  char detail[480];
   char error[240];
 };
 
@@ -33,11 +34,12 @@ Summary summarize_case(const StressCase& c, const EngineSpec& engine) {
     s.speed_bound = *m.speed_bound;
     s.ms_per_step = run.timing.median_ms;
     s.finite = *m.finite, s.in_bounds = *m.in_bounds, s.blow_up = *m.blow_up;
-    if (c.probe >= 0) {
-      s.probe_x = run.final_positions[static_cast<std::size_t>(c.probe)].x;
-      s.target_x = run.final_positions[static_cast<std::size_t>(c.target)].x;
-    }
+    s.tunnelled = *m.tunnelled;
+    s.expect_pass = !run.expect || run.expect->pass;
     if (run.chain) s.budget_hits = run.chain->budget_hits, s.crush_events = run.chain->crush_events;
+    s.judged = static_cast<std::uint8_t>(run.verdict->worst);
+    if (!run.verdict->findings.empty())
+      std::snprintf(s.detail, sizeof s.detail, "%s", run.verdict->findings.front().detail.c_str());
   } catch (const std::exception& e) {
     std::snprintf(s.error, sizeof s.error, "%s", e.what());
   }
@@ -55,9 +57,8 @@ std::string StressCase::label() const {
 
 std::vector<StressCase> stress_cases() {
   std::vector<StressCase> cases;
-  auto add = [&](const char* group, const char* scene, std::vector<std::string> sets, bool quick,
-                 int probe = -1, int target = -1) {
-    cases.push_back({group, scene, std::move(sets), quick, probe, target});
+  auto add = [&](const char* group, const char* scene, std::vector<std::string> sets, bool quick) {
+    cases.push_back({group, scene, std::move(sets), quick});
   };
   for (const char* ratio : {"1", "100", "1e4", "1e6"}) {
     add("mass ratio, 3-box stack", "mass_ratio_stack", {"n=3", std::string("ratio=") + ratio},
@@ -90,8 +91,7 @@ std::vector<StressCase> stress_cases() {
   add("time step", "push_row", {"n=10", "dt=0.1", "steps=12"}, false);
   add("time step", "push_row", {"n=10", "dt=0.001", "steps=1200"}, false);
   for (const char* speed : {"10", "50", "100", "500"}) {
-    add("fast body", "projectile", {std::string("speed=") + speed}, std::string(speed) == "100", 7,
-        3);
+    add("fast body", "projectile", {std::string("speed=") + speed}, std::string(speed) == "100");
   }
   for (const char* overlap : {"0.25", "0.5", "0.75", "0.95"}) {
     add("deep overlap", "overlap_recovery", {std::string("overlap=") + overlap},
@@ -106,26 +106,50 @@ std::vector<StressCase> stress_cases() {
   return cases;
 }
 
-bool StressVerdict::stable() const {
-  return finished && finite && in_bounds && !blow_up && budget_hits == 0 && error.empty();
+const std::vector<KnownFailure>& known_failures() {
+  static const std::vector<KnownFailure> known = [] {
+    const std::string modern = parse_engine_spec("chain").str();
+    const char* through =
+        "push-out moves bodies through others within a step (no continuous "
+        "collision yet)";
+    const char* squeeze =
+        "a crushed row takes its whole squeeze at one end, whose boxes then "
+        "pass each other";
+    return std::vector<KnownFailure>{
+        {"projectile speed=500", modern, through},
+        {"overlap_recovery overlap=0.5", modern, through},
+        {"overlapping_pile n=1000", modern, through},
+        {"overlapping_pile n=200", modern, through},
+        {"converging_walls n=10", modern, squeeze},
+        {"converging_walls n=1000", modern, squeeze},
+    };
+  }();
+  return known;
 }
 
-std::string StressVerdict::verdict() const {
-  if (hang) return "hang";
-  if (!finished && signal != 0) return "crash (signal " + std::to_string(signal) + ")";
-  if (!finished) return "crash (exit " + std::to_string(exit_status) + ")";
-  if (!error.empty()) return "error";
-  std::string bad;
-  if (!finite) bad += ", non-finite";
-  if (!in_bounds) bad += ", out of bounds";
-  if (blow_up) bad += ", blow-up";
-  if (!bad.empty()) return "unstable: " + bad.substr(2);
-  if (budget_hits > 0) return "budget";
-  return "ok";
+VerdictClass StressVerdict::verdict() const {
+  if (hang) return VerdictClass::kHang;
+  if (!finished) return VerdictClass::kCrash;
+  if (!error.empty()) return VerdictClass::kError;
+  return judged;
+}
+
+std::string StressVerdict::verdict_detail() const {
+  if (hang) return "ran out of time";
+  if (!finished && signal != 0) return "died of signal " + std::to_string(signal);
+  if (!finished) return "exited with status " + std::to_string(exit_status) + " and no result";
+  if (!error.empty()) return error;
+  return detail;
+}
+
+bool StressVerdict::stable() const {
+  return finished && error.empty() && finite && in_bounds && !blow_up && !tunnelled &&
+         budget_hits == 0;
 }
 
 bool StressVerdict::fatal() const {
-  return hang || !finished || !error.empty() || !finite || !in_bounds || blow_up;
+  const VerdictClass v = verdict();
+  return v != VerdictClass::kOk && v != VerdictClass::kBudget && known_failure.empty();
 }
 
 StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, double timeout_s) {
@@ -133,6 +157,9 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
   v.case_label = c.label();
   v.group = c.group;
   v.engine = engine.str();
+  for (const KnownFailure& k : known_failures()) {
+    if (k.case_label == v.case_label && k.engine == v.engine) v.known_failure = k.reason;
+  }
   Summary s{};
   const ChildOutcome child = run_in_child([&] { return summarize_case(c, engine); }, s, timeout_s);
   v.finished = child.finished, v.hang = child.hang;
@@ -140,47 +167,45 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
   v.wall_s = child.wall_s;
   if (!v.finished) return v;
   v.error = s.error;
+  v.judged = static_cast<VerdictClass>(s.judged);
+  v.detail = s.detail;
   v.max_penetration = s.max_penetration, v.peak_speed = s.peak_speed, v.speed_bound = s.speed_bound;
   v.ms_per_step = s.ms_per_step;
   v.finite = s.finite, v.in_bounds = s.in_bounds, v.blow_up = s.blow_up;
+  v.tunnelled = s.tunnelled, v.expect_pass = s.expect_pass;
   v.budget_hits = s.budget_hits, v.crush_events = s.crush_events;
-  // Beyond the stack's far face (x = 0.5) with the middle box still in place.
-  v.tunnelled = c.probe >= 0 && s.probe_x > 0.6 && std::abs(s.target_x) < 0.25;
   return v;
 }
 
 void print_stress_table(std::ostream& out, const std::vector<StressVerdict>& verdicts) {
-  TextTable t({"case", "engine", "stable", "verdict", "max pen m", "worst", "ms/step", "wall s"});
+  TextTable t({"case", "engine", "verdict", "max pen m", "peak m/s", "crushes", "budget", "ms/step",
+               "wall s", "why"});
   for (const StressVerdict& v : verdicts) {
-    std::string worst = "-";
-    if (v.finished && v.error.empty()) {
-      if (v.blow_up) {
-        worst = "speed " + fmt_g(v.peak_speed) + " > " + fmt_g(v.speed_bound) + " m/s";
-      } else if (v.tunnelled) {
-        worst = "tunnelled";
-      } else if (v.crush_events > 0) {
-        worst = std::to_string(v.crush_events) + " crushes";
-      }
-    } else if (!v.error.empty()) {
-      worst = v.error;
-    }
-    t.add({v.case_label, parse_engine_spec(v.engine).short_str(), v.stable() ? "yes" : "NO",
-           v.verdict(), v.finished ? fmt_g(v.max_penetration) : "-", worst,
-           v.finished ? fmt_ms(v.ms_per_step) : "-", fmt_g(v.wall_s, 3)});
+    const bool done = v.finished && v.error.empty();
+    std::string verdict = to_string(v.verdict());
+    if (!v.known_failure.empty()) verdict += " (known)";
+    t.add({v.case_label, parse_engine_spec(v.engine).short_str(), verdict,
+           done ? fmt_g(v.max_penetration) : "-", done ? fmt_g(v.peak_speed) : "-",
+           done ? std::to_string(v.crush_events) : "-", done ? std::to_string(v.budget_hits) : "-",
+           done ? fmt_ms(v.ms_per_step) : "-", fmt_g(v.wall_s, 3), v.verdict_detail()});
   }
   t.print(out);
   std::map<std::string, int> by_verdict;
-  int tunnelled = 0;
-  for (const StressVerdict& v : verdicts) {
-    const std::string verdict = v.verdict();
-    ++by_verdict[verdict.substr(0, verdict.find(':'))];
-    tunnelled += v.tunnelled;
-  }
+  for (const StressVerdict& v : verdicts)
+    ++by_verdict[to_string(v.verdict())];
   out << "\n" << verdicts.size() << " runs:";
   const char* sep = " ";
   for (const auto& [verdict, count] : by_verdict)
     out << sep << count << " " << verdict, sep = ", ";
-  out << "; tunnelling in " << tunnelled << "\n";
+  out << "\n";
+  bool first = true;
+  for (const StressVerdict& v : verdicts) {
+    if (v.known_failure.empty()) continue;
+    if (first) out << "known failures (reported, not counted in the exit status):\n";
+    first = false;
+    out << "  " << v.case_label << " in " << parse_engine_spec(v.engine).short_str() << ": "
+        << to_string(v.verdict()) << "; " << v.known_failure << "\n";
+  }
 }
 
 nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, bool quick) {
@@ -195,15 +220,18 @@ nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, b
     c["group"] = v.group;
     c["engine"] = v.engine;
     c["label"] = parse_engine_spec(v.engine).short_str();
-    c["verdict"] = v.verdict();
+    c["verdict"] = to_string(v.verdict());
+    c["detail"] = v.verdict_detail();
     c["stable"] = v.stable();
     c["fatal"] = v.fatal();
+    if (!v.known_failure.empty()) c["known_failure"] = v.known_failure;
     c["finished"] = v.finished;
     if (v.finished) {
       c["finite"] = v.finite;
       c["in_bounds"] = v.in_bounds;
       c["blow_up"] = v.blow_up;
       c["tunnelled"] = v.tunnelled;
+      c["expect_pass"] = v.expect_pass;
       c["budget_hits"] = v.budget_hits;
       c["crush_events"] = v.crush_events;
       c["max_penetration"] = json_number(v.max_penetration);

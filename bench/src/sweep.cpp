@@ -22,17 +22,19 @@ std::vector<std::string> split(std::string_view text, char separator) {
   return out;
 }
 
-PositionError expectation_error(const Scene& scene, const std::vector<Vec2d>& positions) {
+// The error of a point against the scene's expectations: the largest of its entries' errors
+// (distance from an expected centre, or how far beyond a bound or limit), and the root mean square
+// over every body each entry names.
+PositionError expectation_error(const ExpectResult& r) {
   PositionError e;
-  double sum = 0.0;
-  for (const Expectation& x : scene.expect) {
-    const Vec2d p = positions[x.body];
-    const double d = std::hypot(p.x - x.center.x, p.y - x.center.y);
-    if (!std::isfinite(d)) return {HUGE_VAL, HUGE_VAL};
-    e.max = std::max(e.max, d);
-    sum += d * d;
+  double sum = 0.0, count = 0.0;
+  for (const ExpectOutcome& o : r.entries) {
+    if (!std::isfinite(o.error) || !std::isfinite(o.rms)) return {HUGE_VAL, HUGE_VAL};
+    e.max = std::max(e.max, o.error);
+    sum += o.rms * o.rms * static_cast<double>(o.bodies);
+    count += static_cast<double>(o.bodies);
   }
-  e.rms = scene.expect.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(scene.expect.size()));
+  e.rms = count > 0.0 ? std::sqrt(sum / count) : 0.0;
   return e;
 }
 
@@ -120,7 +122,7 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
     SweepPoint point;
     point.run = run_engine(scene, spec, run_options);
     if (point.run.interrupted) break;  // a half-run point says nothing; keep the others
-    point.error = use_expect ? expectation_error(scene, point.run.final_positions)
+    point.error = use_expect ? expectation_error(*point.run.expect)
                              : position_error(scene, point.run.final_positions,
                                               result.reference_run->final_positions);
     result.points.push_back(std::move(point));
@@ -131,12 +133,24 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
   return result;
 }
 
+// How far a point's median may be from its true value: half the interquartile range of its step
+// times, and at least 5% of the median (separate runs of one setting differ by up to 4% here, more
+// than the spread within a run shows).
+double timing_noise(const Timing& t) {
+  return std::max(t.spread_ms, 0.05 * t.median_ms);
+}
+
 void mark_pareto(std::vector<SweepPoint>& points) {
+  // Two medians closer than their noise together are the same speed: noise must not decide.
   for (SweepPoint& p : points) {
-    const double t = p.run.timing.median_ms, e = p.error.rms;
+    const Timing& t = p.run.timing;
+    const double e = p.error.rms;
     p.pareto = std::none_of(points.begin(), points.end(), [&](const SweepPoint& q) {
-      const double qt = q.run.timing.median_ms, qe = q.error.rms;
-      return &q != &p && qt <= t && qe <= e && (qt < t || qe < e);
+      const Timing& u = q.run.timing;
+      const double noise = timing_noise(t) + timing_noise(u);
+      const bool faster = u.median_ms < t.median_ms - noise;
+      const bool no_slower = u.median_ms <= t.median_ms + noise;
+      return &q != &p && no_slower && q.error.rms <= e && (faster || q.error.rms < e);
     });
   }
 }
@@ -147,15 +161,16 @@ void print_sweep_table(std::ostream& out, const SweepResult& r) {
       << (r.reference == "expect" ? "the scene's expectations"
                                   : parse_engine_spec(r.reference).short_str())
       << (r.interrupted ? " (interrupted: the points measured so far)" : "") << "\n\n";
-  TextTable t({"engine", "ms/step", "err max m", "err rms m", "EFD/body-step m", "max pen m",
-               "stable", "pareto"});
+  TextTable t({"engine", "ms/step", "+- ms", "err max m", "err rms m", "EFD/body-step m",
+               "max pen m", "stable", "verdict", "pareto"});
   auto opt = [](const std::optional<double>& v) { return v ? fmt_g(*v) : std::string("-"); };
   for (const SweepPoint& p : r.points) {
     const auto stable = p.run.stable();
     t.add({parse_engine_spec(p.run.engine).short_str(), fmt_ms(p.run.timing.median_ms),
-           fmt_g(p.error.max), fmt_g(p.error.rms), opt(p.run.metrics.efd_per_body_step),
-           opt(p.run.metrics.max_penetration), stable ? (*stable ? "yes" : "NO") : "-",
-           p.pareto ? "*" : ""});
+           fmt_ms(p.run.timing.spread_ms), fmt_g(p.error.max), fmt_g(p.error.rms),
+           opt(p.run.metrics.efd_per_body_step), opt(p.run.metrics.max_penetration),
+           stable ? (*stable ? "yes" : "NO") : "-",
+           p.run.verdict ? to_string(p.run.verdict->worst) : "-", p.pareto ? "*" : ""});
   }
   t.print(out);
 }
@@ -180,6 +195,7 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
       point["engine"] = p.run.engine;
       point["label"] = parse_engine_spec(p.run.engine).short_str();
       point["ms_per_step"] = p.run.timing.median_ms;
+      point["ms_spread"] = p.run.timing.spread_ms;
       point["final_position_error"] = {{"max", json_number(p.error.max)},
                                        {"rms", json_number(p.error.rms)}};
       point["energy_free_displacement"] =
@@ -188,6 +204,7 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
       const auto stable = p.run.stable();
       point["stable"] = stable ? ordered_json(*stable) : ordered_json(nullptr);
       point["pareto"] = p.pareto;
+      if (p.run.verdict) point["verdict"] = to_string(p.run.verdict->worst);
       if (p.run.chain) point["budget_hits"] = p.run.chain->budget_hits;
       s["points"].push_back(std::move(point));
     }

@@ -55,7 +55,11 @@ struct SweepOptions {
 SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
                   const std::string& reference, const SweepOptions& options);
 
-// Marks the points no other point beats on both ms/step and RMS error.
+// How far a point's median ms/step may be from its true value: half the interquartile range of its
+// step times, and at least 5% of the median.
+double timing_noise(const Timing& t);
+// Marks the points no other point beats on both ms/step and RMS error; a point is faster than
+// another only by more than their timing noise together.
 void mark_pareto(std::vector<SweepPoint>& points);
 
 void print_sweep_table(std::ostream& out, const SweepResult& result);

@@ -33,6 +33,17 @@ void TextTable::print(std::ostream& out) const {
   }
 }
 
+std::string concat(std::initializer_list<std::string_view> parts) {
+  std::size_t size = 0;
+  for (const std::string_view p : parts)
+    size += p.size();
+  std::string s;
+  s.reserve(size);
+  for (const std::string_view p : parts)
+    s.append(p);
+  return s;
+}
+
 std::string fmt_g(double v, int digits) {
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";

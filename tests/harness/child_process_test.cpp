@@ -64,11 +64,13 @@ TEST(ChildProcess, ChildOverItsTimeIsKilledAsAHang) {
 TEST(StressVerdicts, DeadChildIsACrashAndFatal) {
   StressVerdict killed;
   killed.signal = SIGSEGV;
-  EXPECT_EQ(killed.verdict(), "crash (signal " + std::to_string(SIGSEGV) + ")");
+  EXPECT_EQ(killed.verdict(), VerdictClass::kCrash);
+  EXPECT_EQ(killed.verdict_detail(), "died of signal " + std::to_string(SIGSEGV));
   EXPECT_TRUE(killed.fatal());
   StressVerdict exited;
   exited.exit_status = 1;
-  EXPECT_EQ(exited.verdict(), "crash (exit 1)");
+  EXPECT_EQ(exited.verdict(), VerdictClass::kCrash);
+  EXPECT_EQ(exited.verdict_detail(), "exited with status 1 and no result");
   EXPECT_TRUE(exited.fatal());
 }
 

@@ -113,7 +113,11 @@ INSTANTIATE_TEST_SUITE_P(
                       BadCall{"run --scene stack --metrics speed", "unknown metric"},
                       BadCall{"run --scene stack --scene-file x.json", "excludes"},
                       BadCall{"run --scene-file /nonexistent.json",
-                              "/nonexistent.json: cannot open"},
+                              "/nonexistent.json: no such file"},
+                      BadCall{"run --scene-file /tmp", "/tmp: is a directory, not a scene file"},
+                      BadCall{"run --scene stack --engines chain --require box2d",
+                              "--require box2d: not among --engines"},
+                      BadCall{"run --scene stack --require chain:colour=3", "unknown key"},
                       BadCall{"run --scene stack --json /nonexistent/dir/out.json", "cannot write"},
                       BadCall{"run --scene stack --set n=abc", "\"abc\" is not a number"},
                       BadCall{"run --scene stack --set n=2.5", "whole number"},
@@ -135,6 +139,69 @@ TEST_P(RefusedCall, ExitsWithStatusTwoAndSaysWhy) {
   const Result r = chainbench(GetParam().args);
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(GetParam().message), std::string::npos) << r.out;
+}
+
+TEST(Cli, VersionIsPrinted) {
+  const Result r = chainbench("--version");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out, std::string("chainbench ") + CHAINBENCH_VERSION + "\n");
+}
+
+// --require gates a build: exit 3 naming what the required engine missed, 0 when it meets every
+// expectation with verdict ok.
+TEST(Cli, RequireExitsThreeNamingWhatFailed) {
+  const std::string train = std::string(CHAINBENCH_TEST_SCENES) + "/verdicts/push_train.json";
+  const Result ok = chainbench("run --scene-file " + train + " --require chain");
+  EXPECT_EQ(ok.status, 0) << ok.out;
+  const Result missed =
+      chainbench("run --scene-file " + train + " --engines chain,box2d --require box2d");
+  EXPECT_EQ(missed.status, 3) << missed.out;
+  EXPECT_NE(missed.out.find("required engine box2d fails: wrong: expect[0] moved b5"),
+            std::string::npos)
+      << missed.out;
+  // Even with no metric asked for: the verdict needs stability and penetration, so they run.
+  const Result bare =
+      chainbench("run --scene-file " + train +
+                 " --engines chain --reference none --metrics none --require chain");
+  EXPECT_EQ(bare.status, 0) << bare.out;
+}
+
+// The run JSON names every body and lists every expectation with its actual value and verdict.
+TEST(Cli, RunJsonNamesBodiesAndEveryExpectation) {
+  const std::string train = std::string(CHAINBENCH_TEST_SCENES) + "/verdicts/push_train.json";
+  const std::string json_path = temp("train.json");
+  const Result r = chainbench("run --scene-file " + train + " --json " + json_path);
+  ASSERT_EQ(r.status, 0) << r.out;
+  nlohmann::json j;
+  std::ifstream(json_path) >> j;
+  EXPECT_EQ(j["scene"]["names"][5], "b5");
+  EXPECT_EQ(j["scene"]["kinds"][0], "dynamic");
+  EXPECT_EQ(j["scene"]["expect"][0]["kind"], "moved");
+  EXPECT_EQ(j["scene"]["expect"][0]["body"], "*");
+  for (const auto& run : j["runs"]) {
+    SCOPED_TRACE(run["label"].get<std::string>());
+    const auto& entry = run["expect"]["entries"][0];
+    for (const char* key :
+         {"kind", "body", "moved", "tolerance", "worst_body", "step", "actual", "error", "pass"}) {
+      EXPECT_TRUE(entry.contains(key)) << key;
+    }
+    EXPECT_EQ(entry["step"], 150);
+    EXPECT_TRUE(run["verdict"].contains("class"));
+    EXPECT_TRUE(run["metrics"].contains("tunnelled"));
+    EXPECT_TRUE(run["metrics"].contains("peak_speed_body"));
+  }
+  EXPECT_EQ(j["runs"][0]["verdict"]["class"], "ok");
+}
+
+// A scene file run for fewer steps than its own says which expectations it no longer checks.
+TEST(Cli, ShorterRunOfASceneFileDropsItsFinalStateExpectations) {
+  const std::string train = std::string(CHAINBENCH_TEST_SCENES) + "/verdicts/push_train.json";
+  const Result r = chainbench("run --scene-file " + train + " --steps 50 --engines chain");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(
+      r.out.find("note: 1 expectation(s) of " + train + " state where bodies end at step 150"),
+      std::string::npos)
+      << r.out;
 }
 
 TEST(Cli, BadSceneFileNamesFileAndPath) {
@@ -214,14 +281,22 @@ TEST(Cli, QuickStressWritesAVerdictForEveryCaseAndEngine) {
   for (const auto& c : j["cases"]) {
     SCOPED_TRACE(c["case"].get<std::string>() + " " + c["engine"].get<std::string>());
     for (const char* key :
-         {"case", "group", "engine", "label", "verdict", "stable", "fatal", "finite", "in_bounds",
-          "blow_up", "budget_hits", "crush_events", "max_penetration", "ms_per_step", "wall_s"}) {
+         {"case", "group", "engine", "label", "verdict", "detail", "stable", "fatal", "finite",
+          "in_bounds", "blow_up", "tunnelled", "expect_pass", "budget_hits", "crush_events",
+          "max_penetration", "ms_per_step", "wall_s"}) {
       EXPECT_TRUE(c.contains(key)) << key;
     }
-    EXPECT_FALSE(c["fatal"].get<bool>());
+    // The modern solver is right on both: the projectile stops against box2, the squeezed box
+    // stays between floor and ceiling.
+    if (c["label"] == "chain") {
+      EXPECT_EQ(c["verdict"], "ok") << c["detail"];
+      EXPECT_FALSE(c["fatal"].get<bool>());
+    }
   }
   // The box between floor and ceiling is crushed every step, which the chain engines count.
   EXPECT_GT(j["cases"][3]["crush_events"].get<int>(), 0) << j["cases"][3]["case"];
+  // The table prints every class it met, and what each rests on.
+  EXPECT_NE(r.out.find("runs:"), std::string::npos) << r.out;
 }
 
 }  // namespace

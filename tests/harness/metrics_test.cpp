@@ -1,12 +1,15 @@
 // Each metric on cases small enough to compute by hand.
 #include "metrics.h"
-#include "overlap_scan.h"
+#include "pair_scan.h"
+#include "tunnelling.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <set>
 
 namespace chainbench {
 namespace {
@@ -33,10 +36,10 @@ TEST(Metrics, EnergyFreeDisplacementIsTheMoveVelocityDoesNotExplain) {
   MetricsRecorder m(s, MetricSelection{true, false, false});
   // a moves 0.3 m in x while its velocity after the step explains 0.1 * 2 = 0.2: 0.1 was a push.
   // b moves 0.4 m in y with no velocity at all: 0.4 of push.
-  m.observe(state({{0, 0}, {5, 0}}), state({{0.3, 0}, {5, 0.4}}, {{2, 0}, {0, 0}}), true);
-  m.observe(state({{0.3, 0}, {5, 0.4}}, {{2, 0}, {0, 0}}),
-            state({{0.5, 0}, {5, 0.4}}, {{2, 0}, {0, 0}}), false);
-  const Metrics r = m.result();
+  m.observe(state({{0, 0}, {5, 0}}), state({{0.3, 0}, {5, 0.4}}, {{2, 0}, {0, 0}}), 1, true);
+  const BodyState end = state({{0.5, 0}, {5, 0.4}}, {{2, 0}, {0, 0}});
+  m.observe(state({{0.3, 0}, {5, 0.4}}, {{2, 0}, {0, 0}}), end, 2, false);
+  const Metrics r = m.result(end);
   EXPECT_NEAR(*r.efd_total, 0.1 + 0.4, 1e-12);
   EXPECT_NEAR(*r.efd_max_step, 0.4, 1e-12);
   EXPECT_NEAR(*r.efd_per_body_step, 0.5 / 4.0, 1e-12);  // 2 bodies x 2 steps
@@ -44,23 +47,27 @@ TEST(Metrics, EnergyFreeDisplacementIsTheMoveVelocityDoesNotExplain) {
   EXPECT_FALSE(r.finite.has_value());
 }
 
+double deepest(const Scene& s, const BodyState& st) {
+  return MetricsRecorder::deepest_overlap(s, st, 0).depth;
+}
+
 TEST(Metrics, PenetrationIsTheDepthOnTheSmallerAxis) {
   const Scene s = two_boxes({0, 0}, {0.9, 0.3});
-  OverlapScan scan(s);
-  std::vector<double> per_body(2);
   // Overlap 0.1 in x, 0.7 in y: depth 0.1.
-  EXPECT_NEAR(scan.deepest(state({{0, 0}, {0.9, 0.3}}), per_body), 0.1, 1e-12);
-  EXPECT_NEAR(per_body[0], 0.1, 1e-12);
-  EXPECT_NEAR(per_body[1], 0.1, 1e-12);
-  EXPECT_EQ(scan.deepest(state({{0, 0}, {1.0, 0.0}}), {}), 0.0);  // touching is not overlapping
+  const PairOverlap o = MetricsRecorder::deepest_overlap(s, state({{0, 0}, {0.9, 0.3}}), 3);
+  EXPECT_NEAR(o.depth, 0.1, 1e-12);
+  EXPECT_EQ(o.a, 0u);
+  EXPECT_EQ(o.b, 1u);
+  EXPECT_EQ(o.step, 3);
+  EXPECT_EQ(deepest(s, state({{0, 0}, {1.0, 0.0}})), 0.0);  // touching is not overlapping
 }
 
 TEST(Metrics, PenetrationIgnoresPairsOfImmovableBodies) {
   const Scene s = two_boxes({0, 0}, {0.5, 0}, BodyKind::kStatic);
   Scene statics = s;
   statics.bodies[0].kind = BodyKind::kStatic;
-  EXPECT_EQ(OverlapScan(statics).deepest(state({{0, 0}, {0.5, 0}}), {}), 0.0);
-  EXPECT_NEAR(OverlapScan(s).deepest(state({{0, 0}, {0.5, 0}}), {}), 0.5, 1e-12);
+  EXPECT_EQ(deepest(statics, state({{0, 0}, {0.5, 0}})), 0.0);
+  EXPECT_NEAR(deepest(s, state({{0, 0}, {0.5, 0}})), 0.5, 1e-12);
 }
 
 TEST(Metrics, PenetrationOfTurnedBoxesUsesTheirEdges) {
@@ -70,68 +77,196 @@ TEST(Metrics, PenetrationOfTurnedBoxesUsesTheirEdges) {
   // b turned 45 degrees: its corner reaches sqrt(0.5) = 0.7071 towards a, whose face is at 0.5:
   // the boxes overlap by 0.5 + 0.7071 - 1.2 along x, the least of the four axes here.
   st.angle[1] = std::numbers::pi / 4.0;
-  EXPECT_NEAR(OverlapScan(s).deepest(st, {}), 0.5 + std::sqrt(0.5) - 1.2, 1e-12);
+  EXPECT_NEAR(deepest(s, st), 0.5 + std::sqrt(0.5) - 1.2, 1e-12);
   st.position[1].x = 1.25;  // 0.5 + 0.7071 < 1.25: apart
-  EXPECT_EQ(OverlapScan(s).deepest(st, {}), 0.0);
+  EXPECT_EQ(deepest(s, st), 0.0);
 }
 
-TEST(Metrics, PenetrationScanMatchesBruteForceOnAManyBodyScene) {
+// A scene of 400 boxes of mixed sizes on a wide ground, one of them 30 times bigger than the
+// rest, some moving far in the step: the grid must report exactly the pairs whose swept boxes
+// touch, each once.
+TEST(Metrics, PairScanFindsExactlyThePairsWhoseSweptBoxesTouch) {
   Scene s;
-  s.bodies.push_back({"ground", BodyKind::kStatic, {0, -1}, {40, 1}, {}, 0, 1, {}, {}});
-  BodyState st(1);
-  st.position[0] = {0, -1};
+  s.bodies.push_back({"ground", BodyKind::kStatic, {0, -1}, {4000, 1}, {}, 0, 1, {}, {}});
+  s.bodies.push_back({"boulder", BodyKind::kDynamic, {5, 10}, {6, 6}, {}, 1, 1, {}, {}});
   for (int i = 0; i < 400; ++i) {
     const double x = -20 + 0.37 * (i % 100), y = 0.3 + 0.41 * (i / 100) + 0.01 * (i % 7);
     s.bodies.push_back(
         {"b", BodyKind::kDynamic, {x, y}, {0.2 + 0.05 * (i % 5), 0.25}, {}, 1, 1, {}, {}});
-    st.position.push_back({x, y});
-    st.velocity.push_back({});
-    st.angle.push_back(0.0);
   }
-  double brute = 0.0;
+  BodyState before(s.bodies.size()), after(s.bodies.size());
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    before.position[i] = s.bodies[i].center;
+    // Every 37th body flies 9 m in the step; the others creep.
+    const double dx = i % 37 == 0 ? 9.0 : 0.01 * static_cast<double>(i % 3);
+    after.position[i] = {s.bodies[i].center.x + dx, s.bodies[i].center.y - 0.02};
+  }
+  after.position[0] = before.position[0];
+  PairScan scan(s);
+  scan.build(before, after);
+  std::set<std::pair<std::size_t, std::size_t>> found;
+  std::size_t reports = 0;
+  scan.for_each_pair([&](std::size_t i, std::size_t j) {
+    ASSERT_LT(i, j);
+    found.insert({i, j});
+    ++reports;
+  });
+  EXPECT_EQ(reports, found.size()) << "a pair was reported twice";
+  auto box = [&](std::size_t i) {
+    const Vec2d h = s.bodies[i].half_extents, p = before.position[i], q = after.position[i];
+    return std::array<double, 4>{std::min(p.x, q.x) - h.x, std::min(p.y, q.y) - h.y,
+                                 std::max(p.x, q.x) + h.x, std::max(p.y, q.y) + h.y};
+  };
+  std::set<std::pair<std::size_t, std::size_t>> brute;
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     for (std::size_t j = i + 1; j < s.bodies.size(); ++j) {
       if (s.bodies[i].kind != BodyKind::kDynamic && s.bodies[j].kind != BodyKind::kDynamic)
         continue;
-      const double ox = s.bodies[i].half_extents.x + s.bodies[j].half_extents.x -
-                        std::abs(st.position[i].x - st.position[j].x);
-      const double oy = s.bodies[i].half_extents.y + s.bodies[j].half_extents.y -
-                        std::abs(st.position[i].y - st.position[j].y);
-      if (ox > 0 && oy > 0) brute = std::max(brute, std::min(ox, oy));
+      const auto a = box(i), b = box(j);
+      if (a[0] <= b[2] && b[0] <= a[2] && a[1] <= b[3] && b[1] <= a[3]) brute.insert({i, j});
     }
   }
-  EXPECT_GT(brute, 0.0);
-  EXPECT_DOUBLE_EQ(OverlapScan(s).deepest(st, {}), brute);
+  EXPECT_GT(brute.size(), 1000u);
+  EXPECT_EQ(found, brute);
 }
 
-TEST(Metrics, StabilityFlagsNaNFlightAndBlowUp) {
+// A body crossing a thin static slab in one step, and one sinking through it over several steps,
+// went through it; a body pressed in and pushed back out of the face it came in by, one sliding
+// off the slab's side, and one created inside it did not.
+TEST(Tunnelling, IsLeavingThroughTheFaceOppositeTheOneEnteredBy) {
+  Scene s = two_boxes({0, 2}, {0, 0}, BodyKind::kStatic);
+  s.bodies[1].half_extents = {2.0, 0.05};  // a slab 0.1 m thick, top at y = 0.05
+  auto watch = [&](std::vector<Vec2d> path) {
+    TunnelWatch w(s);
+    for (std::size_t k = 1; k < path.size(); ++k) {
+      w.check(state({path[k - 1], {0, 0}}), state({path[k], {0, 0}}), 0, 1, static_cast<int>(k));
+      w.end_step();
+    }
+    return w;
+  };
+  const TunnelWatch fast = watch({{0, 2}, {0, -2}});  // 4 m in one step, straight through
+  ASSERT_TRUE(fast.first().has_value());
+  EXPECT_EQ(fast.first()->body, 0u);
+  EXPECT_EQ(fast.first()->through, 1u);
+  EXPECT_EQ(fast.first()->step, 1);
+  EXPECT_EQ(watch({{0, 0.6}, {0, 0.5}, {0, 0.2}, {0, -0.2}, {0, -0.6}}).count(), 1u);  // sank
+  EXPECT_EQ(watch({{0, 0.6}, {0, 0.5}, {0, 0.3}, {0, 0.55}, {0, 0.7}}).count(), 0u);   // out on top
+  EXPECT_EQ(watch({{1.9, 0.6}, {1.9, 0.5}, {3.0, 0.5}, {3.0, -1.0}}).count(), 0u);  // off the side
+  EXPECT_EQ(watch({{0, 0.0}, {0, -0.2}, {0, -0.6}}).count(), 0u);  // created inside: not judged
+  EXPECT_EQ(watch({{0, 0.55}, {0, 0.55}}).count(), 0u);            // resting on it, touching
+}
+
+TEST(Tunnelling, IsJudgedOnTheRelativeMotionOfTwoMovingBodies) {
+  const Scene s = two_boxes({-3, 0}, {3, 0});
+  TunnelWatch w(s);
+  // Both move 4 m towards each other and end on the other's side: each passed through the other.
+  w.check(state({{-3, 0}, {3, 0}}), state({{1, 0}, {-1, 0}}), 0, 1, 1);
+  w.end_step();
+  EXPECT_EQ(w.count(), 1u);
+  // Moving together side by side is not crossing.
+  TunnelWatch side(s);
+  side.check(state({{0, 0}, {1, 0}}), state({{5, 0}, {6, 0}}), 0, 1, 1);
+  side.end_step();
+  EXPECT_EQ(side.count(), 0u);
+}
+
+// Penetration is judged per pair against 5% of the pair's smaller box (or the scene's own
+// tolerance), and a pair created overlapping may stay as deep as it started.
+TEST(Metrics, PenetrationIsJudgedAgainstItsTolerance) {
+  Scene s = two_boxes({0, 0}, {0.9, 0});
+  s.bodies[1].half_extents = {0.25, 0.25};  // smaller box 0.5 m: 2.5 cm may overlap
+  s.bodies[1].center = {1.0, 0.0};
+  auto worst = [&](const Scene& scene, Vec2d b_after) {
+    MetricsRecorder m(scene, MetricSelection{false, true, false});
+    const BodyState start = initial_state(scene);
+    m.observe(start, state({{0, 0}, b_after}), 1, false);
+    return m.result(state({{0, 0}, b_after})).worst_overlap;
+  };
+  const auto shallow = worst(s, {0.73, 0});  // 2 cm
+  ASSERT_TRUE(shallow.has_value());
+  EXPECT_NEAR(shallow->depth, 0.02, 1e-12);
+  EXPECT_NEAR(shallow->tolerance, 0.025, 1e-12);
+  EXPECT_NEAR(worst(s, {0.7, 0})->depth, 0.05, 1e-12);
+  Scene strict = s;
+  strict.penetration_tolerance = 0.001;
+  EXPECT_NEAR(worst(strict, {0.73, 0})->tolerance, 0.001, 1e-15);
+  Scene created = s;
+  created.bodies[1].center = {0.6, 0.0};  // starts 0.15 m deep
+  EXPECT_NEAR(worst(created, {0.65, 0})->tolerance, 0.15, 1e-12);
+}
+
+TEST(Metrics, StabilityMeasuresSpeedFromPositionsAndJudgesEachBodysReach) {
   Scene s = two_boxes({0, 0}, {5, 0});
   s.gravity = {0, -10};  // bound: 1.25 * (0 + 0 + 10 * 0.1 * 10) + 1 = 13.5 m/s
   {
     MetricsRecorder m(s, MetricSelection{false, false, true});
-    m.observe(state({{0, 0}, {5, 0}}), state({{0, 0}, {5, 0}}, {{0, -13}, {0, 0}}), false);
-    const Metrics r = m.result();
+    // a moves 1.3 m in the 0.1 s step: 13 m/s, whatever its velocity says.
+    const BodyState end = state({{0, -1.3}, {5, 0}});
+    m.observe(state({{0, 0}, {5, 0}}), end, 1, false);
+    const Metrics r = m.result(end);
     EXPECT_NEAR(*r.speed_bound, 13.5, 1e-12);
-    EXPECT_TRUE(*r.finite && *r.in_bounds && !*r.blow_up);
+    EXPECT_TRUE(*r.finite && *r.in_bounds && !*r.blow_up && !*r.tunnelled);
     EXPECT_NEAR(*r.peak_speed, 13.0, 1e-12);
+    EXPECT_EQ(r.peak_speed_body, 0u);
+    EXPECT_EQ(r.peak_speed_step, 1);
+  }
+  {
+    // 2 m in a 0.1 s step is 0.65 m beyond what 13.5 m/s allows, far above the 5 cm (5% of the
+    // smallest box) a body may travel beyond the bound.
+    MetricsRecorder m(s, MetricSelection{false, false, true});
+    const BodyState end = state({{2.0, 0}, {5, 0}});
+    m.observe(state({{0, 0}, {5, 0}}), end, 1, false);
+    const Metrics r = m.result(end);
+    EXPECT_TRUE(*r.blow_up);
+    EXPECT_EQ(r.blow_up_body, 0u);
+    EXPECT_EQ(r.blow_up_step, 1);
+    EXPECT_NEAR(r.blow_up_speed, 20.0, 1e-9);
+  }
+  {
+    // A step 4 cm beyond the bound, then slower steps that give it back, again and again (a float
+    // engine far from the origin moving in steps of its resolution): never 5 cm beyond over any
+    // stretch of steps, so no blow-up. Without the slow steps in between it adds up to one.
+    for (const bool rests : {true, false}) {
+      MetricsRecorder m(s, MetricSelection{false, false, true});
+      BodyState at = state({{0, 0}, {5, 0}});
+      for (int k = 1; k <= 20; ++k) {
+        const bool jump = !rests || k % 2 == 1;
+        BodyState next = state({{at.position[0].x + (jump ? 1.39 : 0.0), 0}, {5, 0}});
+        m.observe(at, next, k, false);
+        at = next;
+      }
+      EXPECT_EQ(*m.result(at).blow_up, !rests) << rests;
+    }
+  }
+  // Each body may get as far as its own speed bound over the run, 1.25 * (10 + 10) + 1 = 26 m/s
+  // for 1 s (it can fall, and be hit by the other falling), plus twice the largest half
+  // diagonal: 27.41 m.
+  for (const double x : {25.0, 28.0}) {
+    MetricsRecorder m(s, MetricSelection{false, false, true});
+    const BodyState end = state({{0, 0}, {5 + x, 0}});
+    const Metrics r = m.result(end);
+    EXPECT_EQ(*r.in_bounds, x < 27.41) << x;
+    EXPECT_EQ(r.escaped.size(), x < 27.41 ? 0u : 1u) << x;
   }
   {
     MetricsRecorder m(s, MetricSelection{false, false, true});
-    m.observe(state({{0, 0}, {5, 0}}), state({{0, 0}, {5, 0}}, {{14, 0}, {0, 0}}), false);
-    EXPECT_TRUE(*m.result().blow_up);
+    const BodyState end = state({{std::numeric_limits<double>::quiet_NaN(), 0}, {5, 0}});
+    m.observe(state({{0, 0}, {5, 0}}), end, 1, false);
+    EXPECT_FALSE(*m.result(end).finite);
   }
-  {
-    MetricsRecorder m(s, MetricSelection{false, false, true});
-    // The scene spans 6 x 1 m: 10 times its half diagonal from its centre is about 30 m.
-    m.observe(state({{0, 0}, {5, 0}}), state({{0, 0}, {50, 0}}), false);
-    EXPECT_FALSE(*m.result().in_bounds);
-  }
-  {
-    MetricsRecorder m(s, MetricSelection{false, false, true});
-    m.observe(state({{0, 0}, {5, 0}}),
-              state({{std::numeric_limits<double>::quiet_NaN(), 0}, {5, 0}}), false);
-    EXPECT_FALSE(*m.result().finite);
-  }
+}
+
+TEST(Metrics, FiguresWithinTwoUlpsOfTheirMagnitudeAreRounding) {
+  EXPECT_TRUE(below_resolution(8.881784197001252e-16, 4.0));  // one ulp at 4 m
+  EXPECT_TRUE(below_resolution(1.7e-15, 4.0));
+  EXPECT_FALSE(below_resolution(1e-14, 4.0));
+  EXPECT_FALSE(below_resolution(1e-12, 1000.0));
+  EXPECT_TRUE(below_resolution(1e-13, 1e6));
+  EXPECT_FALSE(below_resolution(HUGE_VAL, 1.0));
+  const Scene s = two_boxes({4, 0}, {5, 0});
+  const std::vector<Vec2d> ref = {{4.0, 0.0}, {5.0, 0.0}};
+  const std::vector<Vec2d> run = {{std::nextafter(4.0, 5.0), 0.0}, {5.0, 0.0}};
+  EXPECT_EQ(position_error(s, run, ref).max, 0.0);
 }
 
 TEST(Metrics, HashIsFnv1aOverThePositionBits) {

@@ -37,7 +37,11 @@ TEST(Runner, ExpectationsPassOrFailPerEngine) {
   Scene s = make_scene("push_row", {"n=2", "steps=60"});
   // Zero rule: all three move speed * t / 3 = 2 * 1 / 3 m. Inelastic: the row is carried at
   // speed sooner, so it ends further on.
-  s.expect.push_back({2, {2.0 + 2.0 / 3.0, 0.0}, 1e-6});
+  Expectation e;
+  e.body = 2;
+  e.center = {2.0 + 2.0 / 3.0, 0.0};
+  e.tolerance = 1e-6;
+  s.expect = {e};
   const EngineRun zero = run_engine(s, parse_engine_spec("chain:velocity=zero"), RunOptions{});
   ASSERT_TRUE(zero.expect.has_value());
   EXPECT_TRUE(zero.expect->pass) << zero.expect->max_error;

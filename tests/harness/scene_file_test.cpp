@@ -32,8 +32,14 @@ const char* kValid = R"({
     {"body": "player", "kind": "velocity", "velocity": [2, 0], "from_step": 0, "to_step": 60}
   ],
   "expect": [
-    {"body": "box1", "center": [1.6667, 0], "tolerance": 0.01}
-  ]
+    {"body": "box1", "center": [1.6667, 0], "tolerance": 0.01},
+    {"body": "*", "min": [null, -0.01], "from_step": 0},
+    {"body": "player", "max": [4, null], "min": [-1, null]},
+    {"body": "box1", "moved": [1.6667, 0], "tolerance": 0.02},
+    {"no_overlap": 0.005, "from_step": 10, "to_step": 60},
+    {"body": "*", "at_rest": 0.01, "to_step": 5}
+  ],
+  "penetration_tolerance": 0.02
 })";
 
 std::string error_of(const std::string& text) {
@@ -54,6 +60,73 @@ std::string edited(const std::string& from, const std::string& to) {
   return s;
 }
 
+// Every kind of expectation reads as written, windows included.
+TEST(SceneFile, ExpectationsReadAsWritten) {
+  using Kind = Expectation::Kind;
+  const Scene s = parse_scene(kValid, "scene.json");
+  ASSERT_EQ(s.expect.size(), 6u);
+  const Expectation& center = s.expect[0];
+  EXPECT_EQ(center.kind, Kind::kCenter);
+  EXPECT_EQ(center.body, 1u);
+  EXPECT_EQ(center.center.x, 1.6667);
+  EXPECT_EQ(center.tolerance, 0.01);
+  EXPECT_FALSE(center.windowed());
+  EXPECT_EQ(center.first_state(60), 60);  // the final state only
+  const Expectation& floor = s.expect[1];
+  EXPECT_EQ(floor.kind, Kind::kBounds);
+  EXPECT_EQ(floor.body, Expectation::kEveryDynamic);
+  EXPECT_FALSE(floor.min_x.has_value());
+  EXPECT_EQ(*floor.min_y, -0.01);
+  EXPECT_FALSE(floor.max_x || floor.max_y);
+  EXPECT_EQ(floor.first_state(60), 0);
+  EXPECT_EQ(floor.last_state(60), 60);  // to the end of the run
+  const Expectation& box = s.expect[2];
+  EXPECT_EQ(*box.min_x, -1.0);
+  EXPECT_EQ(*box.max_x, 4.0);
+  EXPECT_EQ(s.expect[3].kind, Kind::kMoved);
+  EXPECT_EQ(s.expect[3].moved.x, 1.6667);
+  EXPECT_EQ(s.expect[3].tolerance, 0.02);
+  const Expectation& overlap = s.expect[4];
+  EXPECT_EQ(overlap.kind, Kind::kNoOverlap);
+  EXPECT_EQ(overlap.depth, 0.005);
+  EXPECT_EQ(overlap.first_state(60), 10);
+  EXPECT_EQ(overlap.last_state(60), 60);
+  const Expectation& rest = s.expect[5];
+  EXPECT_EQ(rest.kind, Kind::kAtRest);
+  EXPECT_EQ(rest.speed, 0.01);
+  EXPECT_EQ(rest.first_state(60), 0);
+  EXPECT_EQ(rest.last_state(60), 5);
+  EXPECT_EQ(*s.penetration_tolerance, 0.02);
+}
+
+// A scene file run for fewer steps keeps its windowed expectations and drops those stated for
+// its own last step; a window the shorter run cannot reach is refused.
+TEST(SceneFile, RunLengthDropsFinalStateExpectationsAndChecksWindows) {
+  Scene s = parse_scene(edited("\"from_step\": 10, \"to_step\": 60}", "\"from_step\": 10}"),
+                        "scene.json");
+  const std::string note = set_run_length(s, 30, "scene.json");
+  EXPECT_NE(note.find("3 expectation(s) of scene.json"), std::string::npos) << note;
+  EXPECT_EQ(s.steps, 30);
+  ASSERT_EQ(s.expect.size(), 3u);
+  EXPECT_EQ(s.expect[0].last_state(30), 30);
+  Scene again = parse_scene(kValid, "scene.json");
+  EXPECT_EQ(set_run_length(again, 60, "scene.json"), "");  // its own length: nothing changes
+  EXPECT_EQ(again.expect.size(), 6u);
+  for (const int steps : {8, 30}) {  // from step 10 fits no 8-step run, to step 60 no 30-step one
+    Scene short_run = parse_scene(kValid, "scene.json");
+    try {
+      set_run_length(short_run, steps, "scene.json");
+      FAIL() << steps;
+    } catch (const InputError& e) {
+      const std::string where = steps == 8 ? "from_step" : "to_step";
+      EXPECT_NE(std::string(e.what()).find("scene.json: expect[4]." + where + ": must be in [0, " +
+                                           std::to_string(steps) + "]"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(SceneFile, ValidFileReadsAsWritten) {
   const Scene s = parse_scene(kValid, "scene.json");
   EXPECT_EQ(s.name, "push-two");
@@ -68,7 +141,7 @@ TEST(SceneFile, ValidFileReadsAsWritten) {
   ASSERT_EQ(s.drivers.size(), 1u);
   EXPECT_EQ(s.drivers[0].body, 0u);
   EXPECT_EQ(s.drivers[0].to_step, 60);
-  ASSERT_EQ(s.expect.size(), 1u);
+  ASSERT_EQ(s.expect.size(), 6u);
   EXPECT_EQ(s.expect[0].body, 1u);
 }
 
@@ -147,6 +220,51 @@ INSTANTIATE_TEST_SUITE_P(
                 "expect[0].body", "no body is named"},
         BadFile{"ExpectZeroTolerance", edited("\"tolerance\": 0.01", "\"tolerance\": 0"),
                 "expect[0].tolerance", "> 0"},
+        BadFile{"ExpectUnknownKey", edited("\"at_rest\": 0.01", "\"at_rest\": 0.01, \"speed\": 1"),
+                "expect[5].speed", "unknown key"},
+        BadFile{"ExpectNothing", edited("{\"no_overlap\": 0.005, ", "{"), "expect[4]",
+                "states nothing"},
+        BadFile{"ExpectTwoFacts", edited("\"at_rest\": 0.01", "\"at_rest\": 0.01, \"max\": [1, 1]"),
+                "expect[5]", "more than one fact"},
+        BadFile{"ExpectBoundNoAxis", edited("\"min\": [null, -0.01]", "\"min\": [null, null]"),
+                "expect[1]", "bound no axis"},
+        BadFile{"ExpectMinAboveMax", edited("\"max\": [4, null]", "\"max\": [-2, null]"),
+                "expect[2].min[0]", "x min -1 is above x max -2"},
+        BadFile{"ExpectBoundNotPair", edited("\"min\": [null, -0.01]", "\"min\": -0.01"),
+                "expect[1].min", "two numbers or nulls"},
+        BadFile{"ExpectBoundString", edited("\"min\": [null, -0.01]", "\"min\": [null, \"low\"]"),
+                "expect[1].min[1]", "must be a number"},
+        BadFile{
+            "ExpectWindowBeyondSteps",
+            edited("\"from_step\": 10, \"to_step\": 60}", "\"from_step\": 10, \"to_step\": 61}"),
+            "expect[4].to_step", "must be in [0, 60]"},
+        BadFile{
+            "ExpectWindowBackwards",
+            edited("\"from_step\": 10, \"to_step\": 60}", "\"from_step\": 40, \"to_step\": 20}"),
+            "expect[4].to_step", "must be >= from_step"},
+        BadFile{"ExpectWindowNegative", edited("\"from_step\": 10", "\"from_step\": -1"),
+                "expect[4].from_step", "must be in"},
+        BadFile{"ExpectEveryWithCenter",
+                edited("{\"body\": \"box1\", \"center\"", "{\"body\": \"*\", \"center\""),
+                "expect[0].body", "cannot have one expected centre"},
+        BadFile{"ExpectNoOverlapWithBody",
+                edited("{\"no_overlap\": 0.005", "{\"body\": \"box1\", \"no_overlap\": 0.005"),
+                "expect[4].body", "every pair"},
+        BadFile{"ExpectNoOverlapNegative", edited("\"no_overlap\": 0.005", "\"no_overlap\": -1"),
+                "expect[4].no_overlap", "in [0, 1e6]"},
+        BadFile{"ExpectAtRestNegative", edited("\"at_rest\": 0.01", "\"at_rest\": -0.5"),
+                "expect[5].at_rest", "in [0, 1e5]"},
+        BadFile{"ExpectAtRestWithoutBody", edited("{\"body\": \"*\", \"at_rest\"", "{\"at_rest\""),
+                "expect[5].body", "is required"},
+        BadFile{"ExpectToleranceWithoutCenter",
+                edited("\"at_rest\": 0.01", "\"at_rest\": 0.01, \"tolerance\": 1"),
+                "expect[5].tolerance", "belongs to center and moved"},
+        BadFile{"ExpectMovedWithoutTolerance",
+                edited("\"moved\": [1.6667, 0], \"tolerance\": 0.02", "\"moved\": [1.6667, 0]"),
+                "expect[3].tolerance", "is required with moved"},
+        BadFile{"PenetrationToleranceZero",
+                edited("\"penetration_tolerance\": 0.02", "\"penetration_tolerance\": 0"),
+                "penetration_tolerance", "> 0"},
         BadFile{"StepsFraction", edited("\"steps\": 60", "\"steps\": 60.5"), "steps",
                 "whole number"},
         BadFile{"StepsAbsurd", edited("\"steps\": 60", "\"steps\": 1000000000000"), "steps",
@@ -180,13 +298,16 @@ TEST(SceneFile, ReportsEveryProblemNotJustTheFirst) {
   EXPECT_NE(msg.find("bodies[0].colour"), std::string::npos) << msg;
 }
 
-TEST(SceneFile, MissingFileIsNamed) {
-  try {
-    load_scene_file("/nonexistent/dir/scene.json");
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/scene.json: cannot open"),
-              std::string::npos);
+TEST(SceneFile, MissingFileOrDirectoryIsNamed) {
+  for (const auto& [path, why] :
+       {std::pair<std::string, std::string>{"/nonexistent/dir/scene.json", ": no such file"},
+        {::testing::TempDir(), ": is a directory, not a scene file"}}) {
+    try {
+      load_scene_file(path);
+      FAIL() << path;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path + why), std::string::npos) << e.what();
+    }
   }
 }
 

@@ -1,0 +1,139 @@
+#include "expectations.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace chainbench {
+namespace {
+
+using Kind = Expectation::Kind;
+
+bool finite(Vec2d p) {
+  return std::isfinite(p.x) && std::isfinite(p.y);
+}
+
+// How far p lies outside the bounds of e (0 inside).
+double outside(const Expectation& e, Vec2d p) {
+  auto beyond = [](double v, const std::optional<double>& lo, const std::optional<double>& hi) {
+    if (lo && v < *lo) return *lo - v;
+    if (hi && v > *hi) return v - *hi;
+    return 0.0;
+  };
+  return std::hypot(beyond(p.x, e.min_x, e.max_x), beyond(p.y, e.min_y, e.max_y));
+}
+
+}  // namespace
+
+ExpectationCheck::ExpectationCheck(const Scene& scene) : scene_(scene) {
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].kind == BodyKind::kDynamic) dynamic_.push_back(i);
+  }
+  outcomes_.resize(scene.expect.size());
+  for (std::size_t k = 0; k < outcomes_.size(); ++k)
+    outcomes_[k].index = k;
+}
+
+bool ExpectationCheck::needs_state(int k) const {
+  for (const Expectation& e : scene_.expect) {
+    const int first = e.first_state(scene_.steps), last = e.last_state(scene_.steps);
+    if (k >= first && k <= last) return true;
+    if (e.kind == Kind::kAtRest && k + 1 >= first && k + 1 <= last) return true;
+  }
+  return false;
+}
+
+bool ExpectationCheck::needs_depth(int k) const {
+  return std::any_of(scene_.expect.begin(), scene_.expect.end(), [&](const Expectation& e) {
+    return e.kind == Kind::kNoOverlap && k >= e.first_state(scene_.steps) &&
+           k <= e.last_state(scene_.steps);
+  });
+}
+
+// Keeps the state with the largest error, or, while every state passes, the largest value: the
+// state nearest to failing (the latest of equals).
+bool ExpectationCheck::judge(ExpectOutcome& o, double value, double error, bool pass, int k) {
+  const bool worse = o.state < 0 || !(error <= o.error) || (error == o.error && value >= o.value);
+  if (worse) o.value = value, o.error = error, o.state = k;
+  o.pass = o.pass && pass;
+  return worse;
+}
+
+void ExpectationCheck::observe(int k, const BodyState& state, const BodyState* previous,
+                               const PairOverlap* deepest) {
+  const double inf = std::numeric_limits<double>::infinity();
+  for (std::size_t n = 0; n < scene_.expect.size(); ++n) {
+    const Expectation& e = scene_.expect[n];
+    if (k < e.first_state(scene_.steps) || k > e.last_state(scene_.steps)) continue;
+    ExpectOutcome& o = outcomes_[n];
+    if (e.kind == Kind::kNoOverlap) {
+      const double depth = deepest ? deepest->depth : 0.0;
+      if (judge(o, depth, std::max(0.0, depth - e.depth), depth <= e.depth, k)) {
+        o.rms = o.error;
+        if (depth > 0.0) o.body = deepest->a, o.other = deepest->b;
+      }
+      continue;
+    }
+    const std::size_t single[1] = {e.body};
+    const bool all = e.body == Expectation::kEveryDynamic;
+    const std::size_t* begin = all ? dynamic_.data() : single;
+    const std::size_t* end = all ? dynamic_.data() + dynamic_.size() : single + 1;
+    double sum_sq = 0.0;
+    for (const std::size_t* b = begin; b != end; ++b) {
+      const Vec2d p = state.position[*b];
+      double value = 0.0, error = 0.0;
+      bool pass = true;
+      switch (e.kind) {
+        case Kind::kCenter:
+        case Kind::kMoved: {
+          const Vec2d start = scene_.bodies[*b].center;
+          const Vec2d c =
+              e.kind == Kind::kCenter ? e.center : Vec2d{start.x + e.moved.x, start.y + e.moved.y};
+          value = finite(p) ? std::hypot(p.x - c.x, p.y - c.y) : inf;
+          const double scale =
+              std::max({std::abs(p.x), std::abs(p.y), std::abs(c.x), std::abs(c.y)});
+          if (below_resolution(value, scale)) value = 0.0;
+          error = value;
+          pass = value <= e.tolerance;
+          break;
+        }
+        case Kind::kBounds:
+          value = finite(p) ? outside(e, p) : inf;
+          error = value;
+          pass = value == 0.0;
+          break;
+        case Kind::kAtRest: {
+          const Vec2d v = scene_.bodies[*b].velocity;
+          const Vec2d q = previous ? previous->position[*b] : p;
+          value = !finite(p) ? inf
+                  : previous ? std::hypot(p.x - q.x, p.y - q.y) / scene_.dt
+                             : std::hypot(v.x, v.y);
+          error = std::max(0.0, value - e.speed);
+          pass = value <= e.speed;
+          break;
+        }
+        case Kind::kNoOverlap:
+          break;
+      }
+      if (judge(o, value, error, pass, k)) o.body = *b, o.position = p;
+      sum_sq += error * error;
+    }
+    if (o.state == k) {  // this state is the entry's worst
+      o.bodies = static_cast<std::size_t>(end - begin);
+      o.rms = o.bodies > 0 ? std::sqrt(sum_sq / static_cast<double>(o.bodies)) : 0.0;
+    }
+  }
+}
+
+ExpectResult ExpectationCheck::result() const {
+  ExpectResult r;
+  r.entries = outcomes_;
+  for (ExpectOutcome& o : r.entries) {
+    if (o.state < 0) o.pass = false;  // the run stopped before the entry's window
+    r.max_error = std::max(r.max_error, std::isfinite(o.error) ? o.error : HUGE_VAL);
+    r.pass = r.pass && o.pass;
+  }
+  return r;
+}
+
+}  // namespace chainbench

@@ -1,0 +1,65 @@
+// Checks a scene's `expect` entries against one engine's run, state by state.
+//
+// Every entry is judged on the states it names (the final one, or each state of its window) and
+// keeps its worst: the state, the body and the value furthest from what the entry allows, so a
+// failed expectation can be traced to a body and a step.
+#pragma once
+
+#include "engine.h"
+#include "metrics.h"
+#include "scene.h"
+
+#include <optional>
+#include <vector>
+
+namespace chainbench {
+
+struct ExpectOutcome {
+  std::size_t index = 0;             // in scene.expect
+  std::optional<std::size_t> body;   // the body that decided, when one did
+  std::optional<std::size_t> other;  // no_overlap: the body it overlapped
+  int state = -1;                    // steps taken at the worst state; -1: never checked
+  Vec2d position;                    // center, moved, bounds: the body's centre there
+  // center, moved: distance from the expected centre; bounds: distance outside them; at_rest:
+  // speed; no_overlap: depth.
+  double value = 0.0;
+  double error = 0.0;  // center, moved: the distance; the others: how far beyond their limit
+  // Over the bodies the entry names, at the worst state: root mean square of their errors, and
+  // how many they are (1 for a single body or no_overlap).
+  double rms = 0.0;
+  std::size_t bodies = 1;
+  bool pass = true;
+};
+
+struct ExpectResult {
+  double max_error = 0.0;  // the largest error of any entry
+  bool pass = true;
+  std::vector<ExpectOutcome> entries;  // one per scene.expect entry, in order
+};
+
+class ExpectationCheck {
+ public:
+  explicit ExpectationCheck(const Scene& scene);
+  bool empty() const { return outcomes_.empty(); }
+  // Whether the run must read state k: some entry checks it, or checks k + 1 for rest (speed is
+  // measured over the step into a state).
+  bool needs_state(int k) const;
+  // Whether some no_overlap entry checks state k.
+  bool needs_depth(int k) const;
+  // Judges state k. `previous` is state k - 1 (null for k = 0); `deepest` the deepest overlap of
+  // state k when needs_depth(k).
+  void observe(int k, const BodyState& state, const BodyState* previous,
+               const PairOverlap* deepest);
+  // Entries whose window the run never reached (it was interrupted) count as failed.
+  ExpectResult result() const;
+
+ private:
+  // Records state k's value for o; true when it is o's worst so far.
+  bool judge(ExpectOutcome& o, double value, double error, bool pass, int k);
+
+  const Scene& scene_;
+  std::vector<std::size_t> dynamic_;
+  std::vector<ExpectOutcome> outcomes_;
+};
+
+}  // namespace chainbench

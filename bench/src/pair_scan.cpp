@@ -1,0 +1,111 @@
+#include "pair_scan.h"
+
+#include <algorithm>
+#include <bit>
+
+namespace chainbench {
+
+PairScan::PairScan(const Scene& scene) : rotated_(scene.rotation) {
+  const std::size_t n = scene.bodies.size();
+  std::vector<double> sizes;
+  for (const SceneBody& b : scene.bodies) {
+    half_.push_back(b.half_extents);
+    // A turned box reaches as far as its half diagonal on either axis.
+    const double diagonal = std::hypot(b.half_extents.x, b.half_extents.y);
+    reach_.push_back(rotated_ ? Vec2d{diagonal, diagonal} : b.half_extents);
+    dynamic_.push_back(b.kind == BodyKind::kDynamic);
+    if (b.kind == BodyKind::kDynamic) sizes.push_back(std::max(reach_.back().x, reach_.back().y));
+  }
+  double cell = 1.0;
+  if (!sizes.empty()) {
+    // Most dynamic boxes fit a cell; the few bigger ones cover a few cells each.
+    const auto k = static_cast<std::ptrdiff_t>((sizes.size() - 1) * 9 / 10);
+    std::nth_element(sizes.begin(), sizes.begin() + k, sizes.end());
+    cell = std::max(2.0 * sizes[static_cast<std::size_t>(k)], 1e-9);
+  }
+  inv_cell_ = 1.0 / cell;
+  swept_.resize(n);
+  live_.assign(n, 0);
+  giant_.assign(n, 0);
+}
+
+std::uint64_t PairScan::bucket(std::int64_t cx, std::int64_t cy) const {
+  const auto h = static_cast<std::uint64_t>(cx) * 0x9E3779B97F4A7C15ull ^
+                 static_cast<std::uint64_t>(cy) * 0xC2B2AE3D27D4EB4Full;
+  return (h ^ (h >> 29)) & mask_;
+}
+
+void PairScan::build(const BodyState& before, const BodyState& after) {
+  const std::size_t n = half_.size();
+  entries_.clear();
+  giants_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2d p = before.position[i], q = after.position[i];
+    live_[i] = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(q.x) && std::isfinite(q.y);
+    giant_[i] = 0;
+    if (!live_[i]) continue;
+    const Vec2d r = reach_[i];
+    const Box box{std::min(p.x, q.x) - r.x, std::min(p.y, q.y) - r.y, std::max(p.x, q.x) + r.x,
+                  std::max(p.y, q.y) + r.y};
+    swept_[i] = box;
+    const std::int64_t cx0 = cell(box.x0), cx1 = cell(box.x1);
+    const std::int64_t cy0 = cell(box.y0), cy1 = cell(box.y1);
+    // Compared in double: a box of a huge world can span more cells than an int64 holds.
+    const double cells = (static_cast<double>(cx1) - static_cast<double>(cx0) + 1.0) *
+                         (static_cast<double>(cy1) - static_cast<double>(cy0) + 1.0);
+    if (cells > static_cast<double>(kMaxCells)) {
+      giant_[i] = 1;
+      giants_.push_back(static_cast<std::uint32_t>(i));
+      continue;
+    }
+    for (std::int64_t cy = cy0; cy <= cy1; ++cy) {
+      for (std::int64_t cx = cx0; cx <= cx1; ++cx)
+        entries_.push_back({static_cast<std::uint32_t>(i), cx, cy});
+    }
+  }
+  // Counting sort by bucket; stable, so bodies keep their scene order within a bucket.
+  const std::uint64_t table = std::bit_ceil(std::max<std::uint64_t>(64, 2 * entries_.size()));
+  mask_ = table - 1;
+  start_.assign(table + 1, 0);
+  for (const Entry& e : entries_)
+    ++start_[bucket(e.cx, e.cy) + 1];
+  for (std::size_t b = 1; b < start_.size(); ++b)
+    start_[b] += start_[b - 1];
+  sorted_.resize(entries_.size());
+  std::vector<std::uint32_t>& cursor = start_;  // start_[b] is the fill cursor of bucket b ...
+  for (const Entry& e : entries_)
+    sorted_[cursor[bucket(e.cx, e.cy)]++] = e;
+  for (std::size_t b = start_.size() - 1; b > 0; --b)  // ... and is shifted back afterwards
+    start_[b] = start_[b - 1];
+  start_[0] = 0;
+}
+
+double PairScan::depth(const BodyState& s, std::size_t i, std::size_t j) const {
+  const Vec2d a = s.position[i], b = s.position[j];
+  if (!rotated_ || (s.angle[i] == 0.0 && s.angle[j] == 0.0)) {
+    const double ox = half_[i].x + half_[j].x - std::abs(a.x - b.x);
+    const double oy = half_[i].y + half_[j].y - std::abs(a.y - b.y);
+    return (ox > 0.0 && oy > 0.0) ? std::min(ox, oy) : 0.0;
+  }
+  // Separating axes of two turned boxes: each box's two edge normals.
+  const double d[2] = {b.x - a.x, b.y - a.y};
+  const double axes[4][2] = {{std::cos(s.angle[i]), std::sin(s.angle[i])},
+                             {-std::sin(s.angle[i]), std::cos(s.angle[i])},
+                             {std::cos(s.angle[j]), std::sin(s.angle[j])},
+                             {-std::sin(s.angle[j]), std::cos(s.angle[j])}};
+  auto reach = [&](std::size_t k, const double* axis) {
+    const double c = std::cos(s.angle[k]), sn = std::sin(s.angle[k]);
+    return half_[k].x * std::abs(axis[0] * c + axis[1] * sn) +
+           half_[k].y * std::abs(-axis[0] * sn + axis[1] * c);
+  };
+  double least = 1e300;
+  for (const auto& axis : axes) {
+    const double overlap =
+        reach(i, axis) + reach(j, axis) - std::abs(d[0] * axis[0] + d[1] * axis[1]);
+    if (overlap <= 0.0) return 0.0;
+    least = std::min(least, overlap);
+  }
+  return least;
+}
+
+}  // namespace chainbench

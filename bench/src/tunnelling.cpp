@@ -1,0 +1,109 @@
+#include "tunnelling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace chainbench {
+namespace {
+
+struct Crossing {
+  double enter_t = -std::numeric_limits<double>::infinity();
+  double exit_t = std::numeric_limits<double>::infinity();
+  std::int8_t enter_face = -1, exit_face = -1;
+};
+
+// Where the segment r0 -> r1 (t in [0, 1]) is inside the open box |x| < h.x, |y| < h.y.
+// Returns false when it never is.
+bool cross(Vec2d r0, Vec2d r1, Vec2d h, Crossing& c) {
+  const double p0[2] = {r0.x, r0.y}, p1[2] = {r1.x, r1.y}, half[2] = {h.x, h.y};
+  for (int a = 0; a < 2; ++a) {
+    const double d = p1[a] - p0[a];
+    if (d == 0.0) {
+      if (std::abs(p0[a]) >= half[a]) return false;
+      continue;
+    }
+    // Moving towards +: enters through the negative face, leaves through the positive one.
+    const double t_neg = (-half[a] - p0[a]) / d, t_pos = (half[a] - p0[a]) / d;
+    const double t_in = std::min(t_neg, t_pos), t_out = std::max(t_neg, t_pos);
+    const auto in_face = static_cast<std::int8_t>(2 * a + (d > 0.0 ? 0 : 1));
+    const auto out_face = static_cast<std::int8_t>(2 * a + (d > 0.0 ? 1 : 0));
+    if (t_in > c.enter_t) c.enter_t = t_in, c.enter_face = in_face;
+    if (t_out < c.exit_t) c.exit_t = t_out, c.exit_face = out_face;
+  }
+  return c.enter_t < c.exit_t && c.enter_t < 1.0 && c.exit_t > 0.0;
+}
+
+bool inside(Vec2d r, Vec2d h) {
+  return std::abs(r.x) < h.x && std::abs(r.y) < h.y;
+}
+
+constexpr std::int8_t opposite(std::int8_t face) {
+  return static_cast<std::int8_t>(face ^ 1);
+}
+
+}  // namespace
+
+TunnelWatch::TunnelWatch(const Scene& scene) {
+  for (const SceneBody& b : scene.bodies) {
+    if (!scene.rotation) {
+      half_.push_back(b.half_extents);
+    } else {
+      const double inscribed = std::min(b.half_extents.x, b.half_extents.y) / std::sqrt(2.0);
+      half_.push_back({inscribed, inscribed});
+    }
+  }
+}
+
+std::int8_t TunnelWatch::entry_of(std::uint64_t pair) const {
+  const auto it = std::lower_bound(inside_.begin(), inside_.end(), pair,
+                                   [](const Inside& p, std::uint64_t key) { return p.pair < key; });
+  return it != inside_.end() && it->pair == pair ? it->entry : kNoFace;
+}
+
+void TunnelWatch::check(const BodyState& before, const BodyState& after, std::size_t i,
+                        std::size_t j, int step) {
+  const Vec2d h{half_[i].x + half_[j].x, half_[i].y + half_[j].y};
+  const Vec2d r0{before.position[i].x - before.position[j].x,
+                 before.position[i].y - before.position[j].y};
+  const Vec2d r1{after.position[i].x - after.position[j].x,
+                 after.position[i].y - after.position[j].y};
+  const std::uint64_t pair = static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint64_t>(j);
+  std::int8_t entry = kNoFace, exit = kNoFace;
+  if (inside(r0, h)) {
+    entry = entry_of(pair);
+    if (inside(r1, h)) {
+      next_.push_back({pair, entry});
+      return;
+    }
+    Crossing c;
+    if (!cross(r0, r1, h, c)) return;
+    exit = c.exit_face;
+  } else {
+    Crossing c;
+    if (!cross(r0, r1, h, c)) return;
+    entry = c.enter_face;
+    if (inside(r1, h)) {
+      next_.push_back({pair, entry});
+      return;
+    }
+    exit = c.exit_face;
+  }
+  if (entry == kNoFace || exit != opposite(entry)) return;
+  // The relative centre left through the far face: the body on the entry side went through.
+  const bool i_moved = std::hypot(after.position[i].x - before.position[i].x,
+                                  after.position[i].y - before.position[i].y) >=
+                       std::hypot(after.position[j].x - before.position[j].x,
+                                  after.position[j].y - before.position[j].y);
+  ++count_;
+  if (!first_) first_ = TunnelEvent{i_moved ? i : j, i_moved ? j : i, step};
+}
+
+void TunnelWatch::end_step() {
+  std::sort(next_.begin(), next_.end(),
+            [](const Inside& a, const Inside& b) { return a.pair < b.pair; });
+  inside_.swap(next_);
+  next_.clear();
+}
+
+}  // namespace chainbench

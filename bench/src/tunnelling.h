@@ -1,0 +1,57 @@
+// Tunnelling: a body passing through another, judged from positions alone.
+//
+// Two solid boxes can meet, press into each other and part, but a box never comes out of another
+// on the side opposite to the one it went in by. For each pair, the centre of one relative to the
+// other moves on a segment each step; the boxes overlap while that relative centre is inside the
+// box of their summed half extents. A pair is tunnelled when the relative centre leaves that box
+// through the face opposite to the face it entered by: within one step (a fast body crossing a
+// thin one) or over several (a box sinking through a floor). Pairs that start the run overlapping
+// have no entry face and are not judged. With rotation each box counts as the square inscribed in
+// the disc its sides always contain, so a pair judged tunnelled certainly crossed.
+#pragma once
+
+#include "engine.h"
+#include "pair_scan.h"
+#include "scene.h"
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace chainbench {
+
+struct TunnelEvent {
+  std::size_t body = 0;     // the body that came out on the far side
+  std::size_t through = 0;  // the body it passed through
+  int step = 0;             // the state it was seen in (steps taken)
+};
+
+class TunnelWatch {
+ public:
+  explicit TunnelWatch(const Scene& scene);
+  // Judges pair (i, j) over the step from `before` to `after` (state `step`); call it for every
+  // pair a PairScan finds in that step, then end_step().
+  void check(const BodyState& before, const BodyState& after, std::size_t i, std::size_t j,
+             int step);
+  void end_step();
+
+  // The first tunnelling seen, and how many were seen in all.
+  const std::optional<TunnelEvent>& first() const { return first_; }
+  std::uint64_t count() const { return count_; }
+
+ private:
+  // A face of the summed box: axis * 2 + (1 on the positive side); kNoFace when unknown.
+  static constexpr std::int8_t kNoFace = -1;
+  struct Inside {
+    std::uint64_t pair;  // i << 32 | j
+    std::int8_t entry;
+  };
+  std::int8_t entry_of(std::uint64_t pair) const;
+
+  std::vector<Vec2d> half_;
+  std::vector<Inside> inside_, next_;  // pairs overlapping after the last step / this step
+  std::optional<TunnelEvent> first_;
+  std::uint64_t count_ = 0;
+};
+
+}  // namespace chainbench

@@ -1,0 +1,135 @@
+#include "verdict.h"
+
+#include "text_table.h"
+
+#include <algorithm>
+
+namespace chainbench {
+namespace {
+
+std::string point(Vec2d p) {
+  return concat({"(", fmt_g(p.x, 4), ", ", fmt_g(p.y, 4), ")"});
+}
+
+std::string at_state(int k) {
+  return k == 0 ? std::string("at the start") : concat({"at step ", std::to_string(k)});
+}
+
+}  // namespace
+
+const char* to_string(VerdictClass c) {
+  switch (c) {
+    case VerdictClass::kOk:
+      return "ok";
+    case VerdictClass::kBudget:
+      return "budget";
+    case VerdictClass::kPenetrating:
+      return "penetrating";
+    case VerdictClass::kWrong:
+      return "wrong";
+    case VerdictClass::kTunnelled:
+      return "tunnelled";
+    case VerdictClass::kEscaped:
+      return "escaped";
+    case VerdictClass::kUnstable:
+      return "unstable";
+    case VerdictClass::kError:
+      return "error";
+    case VerdictClass::kHang:
+      return "hang";
+    case VerdictClass::kCrash:
+      return "crash";
+  }
+  return "?";
+}
+
+std::string Verdict::str() const {
+  if (findings.empty()) return to_string(worst);
+  return concat({to_string(worst), ": ", findings.front().detail});
+}
+
+std::string describe(const Scene& scene, const ExpectOutcome& o) {
+  const Expectation& e = scene.expect[o.index];
+  const std::string head = concat({"expect[", std::to_string(o.index), "] ", to_string(e.kind)});
+  if (o.state < 0) return concat({head, ": never checked (the run stopped before its window)"});
+  const std::string& body = o.body ? scene.bodies[*o.body].name : head;
+  std::string what;
+  switch (e.kind) {
+    case Expectation::Kind::kCenter:
+      what = concat(
+          {body, ": ", fmt_g(o.value), " m from ", point(e.center), ", at ", point(o.position)});
+      break;
+    case Expectation::Kind::kMoved: {
+      const Vec2d start = scene.bodies[*o.body].center;
+      what =
+          concat({body, ": ", fmt_g(o.value), " m from ",
+                  point({start.x + e.moved.x, start.y + e.moved.y}), ", at ", point(o.position)});
+      break;
+    }
+    case Expectation::Kind::kBounds:
+      what = concat({body, ": ", fmt_g(o.value), " m outside, at ", point(o.position)});
+      break;
+    case Expectation::Kind::kAtRest:
+      what = concat({body, ": moving at ", fmt_g(o.value), " m/s, limit ", fmt_g(e.speed)});
+      break;
+    case Expectation::Kind::kNoOverlap:
+      what = o.body ? concat({scene.bodies[*o.body].name, " / ", scene.bodies[*o.other].name,
+                              ": overlap ", fmt_g(o.value), " m, limit ", fmt_g(e.depth)})
+                    : concat({"overlap ", fmt_g(o.value), " m, limit ", fmt_g(e.depth)});
+      break;
+  }
+  return concat({head, " ", what, " ", at_state(o.state)});
+}
+
+std::optional<Verdict> judge(const Scene& scene, const Metrics& m,
+                             const std::optional<ExpectResult>& expect,
+                             std::uint64_t degraded_steps) {
+  if (!m.finite || !m.max_penetration) return std::nullopt;
+  Verdict v;
+  auto name = [&](std::size_t b) { return scene.bodies[b].name; };
+  auto add = [&](VerdictClass c, std::string detail) {
+    v.findings.push_back({c, std::move(detail)});
+  };
+  if (!*m.finite) add(VerdictClass::kUnstable, "a position or velocity became non-finite");
+  if (*m.blow_up) {
+    add(VerdictClass::kUnstable, concat({name(m.blow_up_body), " moved at ", fmt_g(m.blow_up_speed),
+                                         " m/s at step ", std::to_string(m.blow_up_step),
+                                         ", above the bound ", fmt_g(*m.speed_bound), " m/s"}));
+  }
+  if (!m.escaped.empty()) {
+    const std::string more = m.escaped.size() > 1
+                                 ? concat({" and ", std::to_string(m.escaped.size() - 1), " more"})
+                                 : std::string();
+    add(VerdictClass::kEscaped,
+        concat({name(m.escaped.front()), more, " ended beyond where anything could send it"}));
+  }
+  if (m.tunnel) {
+    const std::string all =
+        m.tunnel_count > 1 ? concat({" (", std::to_string(m.tunnel_count), " crossings in all)"})
+                           : std::string();
+    add(VerdictClass::kTunnelled,
+        concat({name(m.tunnel->body), " passed through ", name(m.tunnel->through), " ",
+                at_state(m.tunnel->step), all}));
+  }
+  if (expect && !expect->pass) {
+    for (const ExpectOutcome& o : expect->entries) {
+      if (!o.pass) add(VerdictClass::kWrong, describe(scene, o));
+    }
+  }
+  if (m.worst_overlap && m.worst_overlap->depth > m.worst_overlap->tolerance) {
+    const PairOverlap& w = *m.worst_overlap;
+    add(VerdictClass::kPenetrating,
+        concat({name(w.a), " and ", name(w.b), " overlap ", fmt_g(w.depth), " m ", at_state(w.step),
+                " (tolerance ", fmt_g(w.tolerance), " m)"}));
+  }
+  if (degraded_steps > 0) {
+    add(VerdictClass::kBudget,
+        concat({std::to_string(degraded_steps), " step(s) cut short by the budget"}));
+  }
+  std::stable_sort(v.findings.begin(), v.findings.end(),
+                   [](const Finding& a, const Finding& b) { return a.what > b.what; });
+  if (!v.findings.empty()) v.worst = v.findings.front().what;
+  return v;
+}
+
+}  // namespace chainbench

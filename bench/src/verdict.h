@@ -1,0 +1,68 @@
+// Verdicts: what a run did, in words a user can trust. `ok` means physically right (every check
+// below passed), not merely finite.
+//
+// From worst to best:
+//   crash       the run's process died (a signal, or an exit without a result)
+//   hang        it ran out of time
+//   error       it stopped with an error
+//   unstable    a position or velocity became non-finite, or a body moved faster in a step than
+//               gravity, drivers and initial speeds can make anything move (blow-up)
+//   escaped     a body ended farther from its start than anything in the scene could send it
+//   tunnelled   a body passed through another
+//   wrong       an expectation of the scene failed
+//   penetrating two boxes overlapped deeper than the scene's tolerance (default: 5% of the
+//               smaller box of the pair)
+//   budget      the engine cut some step short to bound its work (the chain solver's budget)
+//   ok
+#pragma once
+
+#include "expectations.h"
+#include "metrics.h"
+#include "scene.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace chainbench {
+
+enum class VerdictClass : std::uint8_t {
+  kOk,
+  kBudget,
+  kPenetrating,
+  kWrong,
+  kTunnelled,
+  kEscaped,
+  kUnstable,
+  kError,
+  kHang,
+  kCrash,
+};
+
+const char* to_string(VerdictClass c);
+
+struct Finding {
+  VerdictClass what = VerdictClass::kOk;
+  std::string detail;  // names the body, the step and the figure: "box2 sank 0.82 m into box1"
+};
+
+struct Verdict {
+  VerdictClass worst = VerdictClass::kOk;
+  std::vector<Finding> findings;  // every failed check, worst first
+
+  bool ok() const { return worst == VerdictClass::kOk; }
+  // "ok", or the worst class with its detail: "wrong: expect[0] box2 0.82 m from (0, 2.5)".
+  std::string str() const;
+};
+
+// Judges a run from its metrics (stability and penetration must have been computed), its
+// expectation results and the steps the engine reported as degraded. Null: not judged.
+std::optional<Verdict> judge(const Scene& scene, const Metrics& metrics,
+                             const std::optional<ExpectResult>& expect,
+                             std::uint64_t degraded_steps);
+
+// One line per failed expectation entry: "expect[2] (bounds, box3): 0.41 m outside at step 37".
+std::string describe(const Scene& scene, const ExpectOutcome& outcome);
+
+}  // namespace chainbench

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, runs the default comparison suite and writes results/:
 #   results/runs/<scene>.{json,csv}    chainbench run, every engine, every default scene and
-#                                      every example scene file in bench/scenes/
+#                                      every example scene file in bench/examples/
 #   results/stress.{json,txt}          chainbench stress, the full matrix
 #   results/traces/<scene>.csv         per-step traces of a few small scenes
 #   results/sweep.{json,csv}           a small error-against-run-time sweep
@@ -47,7 +47,7 @@ for scene in "${scenes[@]}"; do
 done
 
 files=()
-for file in bench/scenes/*.json; do
+for file in bench/examples/*.json; do
   scene=$(basename "$file" .json)
   files+=("$scene")
   say "run $file"

@@ -252,7 +252,7 @@ TEST(Cli, ExampleSceneFilesRunAndModernChainingMeetsTheirExpectations) {
   for (const char* name : {"push_two", "corridor", "lift"}) {
     SCOPED_TRACE(name);
     const std::string json_path = temp(std::string(name) + ".json");
-    const Result r = chainbench(std::string("run --scene-file ") + CHAINBENCH_SCENES + "/" + name +
+    const Result r = chainbench(std::string("run --scene-file ") + CHAINBENCH_EXAMPLES + "/" + name +
                                 ".json --json " + json_path);
     ASSERT_EQ(r.status, 0) << r.out;
     nlohmann::json j;

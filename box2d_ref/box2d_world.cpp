@@ -32,15 +32,15 @@ double Box2dWorld::skin_shrink() {
 
 Box2dWorld::Box2dWorld(const Scene& scene, const Box2dSettings& settings)
     : world_(std::make_unique<b2World>(vec(scene.gravity))),
-      drivers_(scene.drivers),
+      drives_(scene),
       dt_(scene.dt),
       settings_(settings) {
   if (settings.velocity_iterations < 1 || settings.position_iterations < 0 ||
       settings.substeps < 1) {
     throw std::invalid_argument("Box2dWorld: iterations and substeps out of range");
   }
-  world_->SetAllowSleeping(false);
-  world_->SetContinuousPhysics(false);
+  world_->SetAllowSleeping(settings.sleep);
+  world_->SetContinuousPhysics(settings.continuous);
   world_->SetWarmStarting(settings.warm_starting);
   bodies_.reserve(scene.bodies.size());
   for (const SceneBody& sb : scene.bodies) {
@@ -49,7 +49,8 @@ Box2dWorld::Box2dWorld(const Scene& scene, const Box2dSettings& settings)
     def.position = vec(sb.center);
     def.linearVelocity = sb.kind == BodyKind::kStatic ? b2Vec2(0.0f, 0.0f) : vec(sb.velocity);
     def.fixedRotation = !scene.rotation;
-    def.allowSleep = false;
+    def.allowSleep = settings.sleep;
+    def.bullet = settings.continuous && sb.kind == BodyKind::kDynamic;
     def.gravityScale = static_cast<float>(sb.gravity_scale);
     b2Body* body = world_->CreateBody(&def);
 
@@ -85,13 +86,25 @@ void Box2dWorld::step(int step_index) {
   // A driver sets the velocity at the start of the scene step only, as the scene format defines
   // it: sub-steps then refine the same physics instead of pushing harder (re-driving before every
   // sub-step would move a driven pusher's row up to 0.3 m further in push_row).
-  for (const Driver& d : drivers_) {
-    if (step_index >= d.from_step && step_index < d.to_step)
-      bodies_[d.body]->SetLinearVelocity(vec(d.velocity));
+  drives_.advance(step_index);
+  for (const Drive& d : drives_.active()) {
+    b2Body* body = bodies_[d.body];
+    b2Vec2 v = body->GetLinearVelocity();
+    if (d.hold_x) v.x = static_cast<float>(d.velocity.x);
+    if (d.hold_y) v.y = static_cast<float>(d.velocity.y);
+    body->SetLinearVelocity(v);
+    body->SetAwake(true);
   }
   const auto h = static_cast<float>(dt_ / settings_.substeps);
   for (int k = 0; k < settings_.substeps; ++k)
     world_->Step(h, settings_.velocity_iterations, settings_.position_iterations);
+}
+
+std::size_t Box2dWorld::touching_contacts() const {
+  std::size_t n = 0;
+  for (const b2Contact* c = world_->GetContactList(); c; c = c->GetNext())
+    n += c->IsTouching();
+  return n;
 }
 
 void Box2dWorld::read_state(std::span<Vec2d> positions, std::span<Vec2d> velocities,

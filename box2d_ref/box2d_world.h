@@ -1,13 +1,14 @@
 // The reference: a Box2D 2.4 world built from a Scene and stepped the way the scene says.
 //
-// Fixed rotation unless the scene asks for rotation; continuous collision and sleeping off so
-// every step does comparable work; each body's mass set exactly from the scene. Box2D pads
+// Fixed rotation unless the scene asks for rotation; continuous collision and sleeping off unless
+// asked for, so every step does comparable work; each body's mass set exactly from the scene. Box2D pads
 // every polygon with a skin of b2_polygonRadius (1 cm) and lets contacts rest about
 // b2_linearSlop (5 mm) deep into it, so boxes built at their declared size rest about 1.5 cm
 // apart. With compensation (the default) each polygon is built kSkinShrink smaller per side
 // and boxes rest where their declared faces meet.
 #pragma once
 
+#include "drive_schedule.h"
 #include "scene.h"
 
 #include <cstddef>
@@ -26,6 +27,8 @@ struct Box2dSettings {
   int substeps = 1;  // Box2D 2.4 has none of its own: each scene step is this many world steps
   bool compensate_skin = true;
   bool warm_starting = true;
+  bool continuous = false;  // continuous collision, every dynamic body a bullet
+  bool sleep = false;       // bodies at rest fall asleep, as games ship Box2D
 };
 
 class Box2dWorld {
@@ -38,8 +41,11 @@ class Box2dWorld {
   Box2dWorld(const Box2dWorld&) = delete;
   Box2dWorld& operator=(const Box2dWorld&) = delete;
 
-  // Applies the drivers active at scene step `step_index`, then advances by the scene's dt.
+  // Applies the drives the scene holds at step `step_index` (DriveSchedule), then advances by the
+  // scene's dt.
   void step(int step_index);
+  // Contacts whose shapes touch after the last step.
+  std::size_t touching_contacts() const;
   // Centres, velocities and angles in scene order; an empty span is skipped.
   void read_state(std::span<Vec2d> positions, std::span<Vec2d> velocities,
                   std::span<double> angles) const;
@@ -48,7 +54,7 @@ class Box2dWorld {
  private:
   std::unique_ptr<b2World> world_;
   std::vector<b2Body*> bodies_;
-  std::vector<Driver> drivers_;
+  DriveSchedule drives_;
   double dt_;
   Box2dSettings settings_;
 };

@@ -11,10 +11,10 @@ namespace {
 using nlohmann::ordered_json;
 
 const EngineRun* reference_run(const RunReport& r) {
-  if (r.reference_spec.empty()) return nullptr;
+  if (!r.reference_spec) return nullptr;
   if (r.reference) return &*r.reference;
   for (const EngineRun& run : r.runs) {
-    if (run.engine == r.reference_spec) return &run;
+    if (run.spec == *r.reference_spec) return &run;
   }
   return nullptr;
 }
@@ -34,9 +34,21 @@ std::string yes_no(const std::optional<bool>& v) {
   return v ? (*v ? "yes" : "NO") : "-";
 }
 
-// The canonical spec is long for a table: show the keys that differ from the defaults.
-std::string short_name(const std::string& spec) {
-  return parse_engine_spec(spec).short_str();
+// The counter columns of the table: each column title some run's engine declares, once, in the
+// order the runs first show them.
+std::vector<std::pair<std::string, std::string>> counter_columns(const RunReport& r) {
+  std::vector<std::pair<std::string, std::string>> columns;  // (title, counter name)
+  auto note = [&](const EngineRun& run) {
+    for (const CounterDef& c : run.counter_defs()) {
+      const bool known = std::any_of(columns.begin(), columns.end(),
+                                     [&](const auto& col) { return col.first == c.column; });
+      if (!c.column.empty() && !known) columns.emplace_back(c.column, c.name);
+    }
+  };
+  for (const EngineRun& run : r.runs)
+    note(run);
+  if (r.reference) note(*r.reference);
+  return columns;
 }
 
 ordered_json optional_number(const std::optional<double>& v) {
@@ -139,7 +151,7 @@ void print_expectation_summary(std::ostream& out, const RunReport& r, const Engi
   auto note = [&](const EngineRun& run) {
     if (!run.expect) return;
     std::string& list = run.expect->pass ? met : missed;
-    list += (list.empty() ? "" : ", ") + short_name(run.engine) + (&run == ref ? " (ref)" : "");
+    list += (list.empty() ? "" : ", ") + run.spec.label() + (&run == ref ? " (ref)" : "");
   };
   for (const EngineRun& run : r.runs)
     note(run);
@@ -149,7 +161,7 @@ void print_expectation_summary(std::ostream& out, const RunReport& r, const Engi
   if (!missed.empty()) out << "; missed by " << missed;
   out << "\n";
   if (ref && ref->expect && !ref->expect->pass) {
-    out << "note: the reference " << short_name(ref->engine)
+    out << "note: the reference " << ref->spec.label()
         << " misses the expectations: the vs-ref columns measure distance from it, not error\n";
   }
 }
@@ -160,21 +172,21 @@ void print_run_table(std::ostream& out, const RunReport& r) {
   const Scene& s = *r.scene;
   out << "scene " << s.name << ": " << s.bodies.size() << " bodies, " << s.steps << " steps of "
       << fmt_g(s.dt, 4) << " s";
-  if (!r.reference_spec.empty()) out << "; reference " << short_name(r.reference_spec);
+  if (r.reference_spec) out << "; reference " << r.reference_spec->label();
   out << "\n\n";
   const bool expect = !s.expect.empty();
-  const bool chain = std::any_of(r.runs.begin(), r.runs.end(),
-                                 [](const EngineRun& run) { return run.chain.has_value(); });
+  const auto columns = counter_columns(r);
   std::vector<std::string> header = {"engine", "ms/step", "x ref"};
   if (expect) header.push_back("expect");
   for (const char* h : {"vs ref max m", "vs ref rms m", "EFD/body-step m", "max pen m", "peak m/s"})
     header.push_back(h);
-  if (chain) header.insert(header.end(), {"crushes", "budget"});
+  for (const auto& column : columns)
+    header.push_back(column.first);
   header.insert(header.end(), {"stable", "verdict"});
   TextTable t(header);
   auto add = [&](const EngineRun& run, bool is_reference) {
     const Comparison* c = comparison_of(r, run);
-    std::vector<std::string> row = {short_name(run.engine) + (is_reference ? " (ref)" : ""),
+    std::vector<std::string> row = {run.spec.label() + (is_reference ? " (ref)" : ""),
                                     fmt_ms(run.timing.median_ms),
                                     c ? fmt_g(c->speedup, 3) : (is_reference ? "1" : "-")};
     if (expect) row.push_back(expect_cell(run));
@@ -182,10 +194,8 @@ void print_run_table(std::ostream& out, const RunReport& r) {
                            c ? fmt_g(c->error.rms) : (is_reference ? "0" : "-"),
                            opt(run.metrics.efd_per_body_step), opt(run.metrics.max_penetration),
                            opt(run.metrics.peak_speed)});
-    if (chain) {
-      row.push_back(run.chain ? std::to_string(run.chain->crush_events) : "-");
-      row.push_back(run.chain ? std::to_string(run.chain->budget_hits) : "-");
-    }
+    for (const auto& column : columns)
+      row.push_back(opt(run.counter(column.second)));
     row.push_back(yes_no(run.stable()));
     row.push_back(run.verdict ? to_string(run.verdict->worst) : "-");
     t.add(row);
@@ -202,7 +212,7 @@ void print_run_table(std::ostream& out, const RunReport& r) {
     if (!run.verdict || run.verdict->ok()) return;
     if (first) out << "\n";
     first = false;
-    out << short_name(run.engine) << ": " << run.verdict->str();
+    out << run.spec.label() << ": " << run.verdict->str();
     if (run.verdict->findings.size() > 1)
       out << " (+" << run.verdict->findings.size() - 1 << " more in the JSON)";
     out << "\n";
@@ -235,11 +245,11 @@ ordered_json run_json(const RunReport& r) {
       j["scene"]["expect"].push_back(expectation_json(s, e));
   }
   if (s.penetration_tolerance) j["scene"]["penetration_tolerance"] = *s.penetration_tolerance;
-  if (!r.reference_spec.empty()) j["reference"] = r.reference_spec;
+  if (r.reference_spec) j["reference"] = r.reference_spec->str();
   auto run_entry = [&](const EngineRun& run) {
     ordered_json e;
     e["engine"] = run.engine;
-    e["label"] = short_name(run.engine);
+    e["label"] = run.spec.label();
     ordered_json positions = ordered_json::array();
     for (const Vec2d& p : run.final_positions)
       positions.push_back({json_number(p.x), json_number(p.y)});
@@ -293,14 +303,14 @@ ordered_json run_json(const RunReport& r) {
     if (const auto stable = run.stable()) m["stable"] = *stable;
     m["hash"] = hex(run.hash);
     e["metrics"] = std::move(m);
-    if (run.chain) {
-      e["chain_stats"] = {{"resolve_calls", run.chain->resolve_calls_per_step},
-                          {"max_depth", run.chain->max_depth},
-                          {"budget_hits", run.chain->budget_hits},
-                          {"crush_events", run.chain->crush_events},
-                          {"passes", run.chain->passes_per_step},
-                          {"contacts", run.chain->contacts_per_step}};
-    }
+    ordered_json counters = ordered_json::object();
+    const std::vector<CounterDef>& defs = run.counter_defs();
+    for (std::size_t c = 0; c < defs.size() && c < run.counters.size(); ++c)
+      counters[defs[c].name] = json_number(run.counters[c]);
+    // An engine may also keep its counters under the key its first JSON had (chain_stats).
+    const std::string& block = engine_def(run.spec.engine).stats_block;
+    if (!block.empty()) e[block] = counters;
+    e["counters"] = std::move(counters);
     e["degraded_steps"] = run.degraded_steps;
     if (run.expect) e["expect"] = expect_result_json(s, *run.expect);
     if (run.verdict) {
@@ -334,7 +344,7 @@ void write_run_csv(std::ostream& out, const RunReport& r) {
   out << "scene,engine,bodies,steps,dt,ms_median,ms_mean,ms_p95,setup_ms,err_max,err_rms,efd_total,"
          "efd_per_body_step,efd_max_step,max_penetration,peak_speed,finite,in_bounds,stable,hash,"
          "resolve_calls,max_depth,budget_hits,crush_events,expect_max_error,expect_pass,verdict,"
-         "degraded_steps,tunnelled,escaped\n";
+         "degraded_steps,tunnelled,escaped,counters\n";
   auto num = [](const std::optional<double>& v) { return v ? fmt_g(*v, 9) : std::string(); };
   auto flag = [](const std::optional<bool>& v) {
     return v ? std::string(*v ? "1" : "0") : std::string();
@@ -350,17 +360,18 @@ void write_run_csv(std::ostream& out, const RunReport& r) {
         << num(m.efd_per_body_step) << ',' << num(m.efd_max_step) << ',' << num(m.max_penetration)
         << ',' << num(m.peak_speed) << ',' << flag(m.finite) << ',' << flag(m.in_bounds) << ','
         << flag(run.stable()) << ',' << hex(run.hash) << ',';
-    if (run.chain) {
-      out << fmt_g(run.chain->resolve_calls_per_step, 9) << ',' << run.chain->max_depth << ','
-          << run.chain->budget_hits << ',' << run.chain->crush_events;
-    } else {
-      out << ",,,";
-    }
+    // The first CSV's four counter columns, filled by any engine with counters of those names.
+    out << num(run.counter("resolve_calls")) << ',' << num(run.counter("max_depth")) << ','
+        << num(run.counter("budget_hits")) << ',' << num(run.counter("crush_events"));
     out << ',' << (run.expect ? fmt_g(run.expect->max_error, 9) : "") << ','
         << (run.expect ? (run.expect->pass ? "1" : "0") : "") << ','
         << (run.verdict ? to_string(run.verdict->worst) : "") << ',' << run.degraded_steps << ','
         << flag(m.tunnelled) << ',' << (m.peak_speed ? std::to_string(m.escaped.size()) : "")
-        << '\n';
+        << ",\"";
+    const std::vector<CounterDef>& defs = run.counter_defs();
+    for (std::size_t c = 0; c < defs.size() && c < run.counters.size(); ++c)
+      out << (c ? ";" : "") << defs[c].name << '=' << fmt_g(run.counters[c], 9);
+    out << "\"\n";
   };
   for (const EngineRun& run : r.runs)
     row(run);

@@ -26,7 +26,7 @@ struct RunReport {
   const Scene* scene = nullptr;
   std::vector<EngineRun> runs;
   std::optional<EngineRun> reference;  // the reference run, when it was not one of `runs`
-  std::string reference_spec;          // empty: no reference
+  std::optional<EngineSpec> reference_spec;  // none: no reference
   std::vector<Comparison> comparison;  // each run against the reference, in run order
 };
 

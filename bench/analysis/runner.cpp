@@ -36,6 +36,18 @@ Timing summarize(std::vector<double>& samples, double setup_ms) {
 
 }  // namespace
 
+const std::vector<CounterDef>& EngineRun::counter_defs() const {
+  return engine_def(spec.engine).counters;
+}
+
+std::optional<double> EngineRun::counter(std::string_view name) const {
+  const std::vector<CounterDef>& defs = counter_defs();
+  for (std::size_t i = 0; i < defs.size() && i < counters.size(); ++i) {
+    if (defs[i].name == name) return counters[i];
+  }
+  return std::nullopt;
+}
+
 std::optional<bool> EngineRun::stable() const {
   if (!metrics.finite) return std::nullopt;
   return *metrics.finite && *metrics.in_bounds && !*metrics.blow_up && !*metrics.tunnelled &&
@@ -59,6 +71,7 @@ void TraceWriter::write(const std::string& engine, int step, double time, const 
 
 EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOptions& options) {
   EngineRun run;
+  run.spec = spec;
   run.engine = spec.str();
   const auto t0 = Clock::now();
   std::unique_ptr<Engine> engine = make_engine(spec, scene);
@@ -84,9 +97,9 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
       expect.observe(0, before, nullptr, expect.needs_depth(0) ? &deepest : nullptr);
     }
   }
-  const chain::StepStats* stats = engine->chain_stats();
-  ChainRunStats chain_totals;
-  double calls = 0.0, passes = 0.0, contacts = 0.0;
+  const std::vector<CounterDef>& counter_defs = run.counter_defs();
+  std::vector<double> totals(counter_defs.size(), 0.0);
+  int steps_taken = 0;
 
   std::vector<double> samples;
   samples.reserve(static_cast<std::size_t>(scene.steps));
@@ -100,12 +113,14 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     engine->step(step);
     const double ms = ms_since(s0);
     if (step > 0) samples.push_back(ms);  // the first step pays for warming caches and buffers
-    if (stats) {
-      calls += stats->resolve_calls, passes += stats->passes, contacts += stats->contacts;
-      chain_totals.max_depth = std::max(chain_totals.max_depth, stats->max_depth);
-      chain_totals.budget_hits += stats->budget_hits;
-      chain_totals.crush_events += stats->crush_events;
-      run.degraded_steps += stats->budget_hits > 0;
+    ++steps_taken;
+    run.degraded_steps += engine->degraded();
+    if (!totals.empty()) {
+      const std::span<const double> values = engine->counters();
+      for (std::size_t c = 0; c < totals.size() && c < values.size(); ++c) {
+        totals[c] = counter_defs[c].aggregate == Aggregate::kMax ? std::max(totals[c], values[c])
+                                                                 : totals[c] + values[c];
+      }
     }
     const int k = step + 1;  // the state after this step
     if (every_step || expect.needs_state(k)) {
@@ -139,13 +154,11 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     run.metrics = recorder->result(last);
     run.metrics_computed = true;
   }
-  if (stats) {
-    const double steps = static_cast<double>(scene.steps);
-    chain_totals.resolve_calls_per_step = calls / steps;
-    chain_totals.passes_per_step = passes / steps;
-    chain_totals.contacts_per_step = contacts / steps;
-    run.chain = chain_totals;
+  for (std::size_t c = 0; c < totals.size(); ++c) {
+    if (counter_defs[c].aggregate == Aggregate::kMean)
+      totals[c] /= std::max(1, steps_taken);
   }
+  run.counters = std::move(totals);
   if (!expect.empty()) run.expect = expect.result();
   run.verdict = judge(scene, run.metrics, run.expect, run.degraded_steps);
   return run;

@@ -6,6 +6,7 @@
 
 #include "engine.h"
 #include "engine_spec.h"
+#include "registry.h"
 #include "expectations.h"
 #include "metrics.h"
 #include "scene.h"
@@ -17,6 +18,7 @@
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace chainbench {
@@ -32,25 +34,17 @@ struct Timing {
   int samples = 0;
 };
 
-// Totals of the chaining solver's per-step counters over a run.
-struct ChainRunStats {
-  double resolve_calls_per_step = 0.0;
-  double passes_per_step = 0.0;
-  double contacts_per_step = 0.0;
-  std::uint32_t max_depth = 0;
-  std::uint64_t budget_hits = 0;
-  std::uint64_t crush_events = 0;
-};
-
 struct EngineRun {
-  std::string engine;  // canonical spec
+  EngineSpec spec;
+  std::string engine;  // spec.str(), the canonical spec
   std::vector<Vec2d> final_positions;
   std::vector<double> final_angles;
   Timing timing;
   Metrics metrics;
   bool metrics_computed = false;
   std::uint64_t hash = 0;
-  std::optional<ChainRunStats> chain;
+  // The engine's counters (registry.h) aggregated over the run, in the order it declares them.
+  std::vector<double> counters;
   std::uint64_t degraded_steps = 0;  // steps the engine cut short (the chain's budget)
   std::optional<ExpectResult> expect;
   std::optional<Verdict> verdict;  // judged when stability and penetration were measured
@@ -59,6 +53,9 @@ struct EngineRun {
   // Finite, no body escaped, no blow-up, no body through another, and no step cut short; empty
   // when not measured.
   std::optional<bool> stable() const;
+  // The run's value of the counter `name`, or empty when its engine has no such counter.
+  std::optional<double> counter(std::string_view name) const;
+  const std::vector<CounterDef>& counter_defs() const;
 };
 
 // Receives one row per body per step: the trace CSV of `chainbench run --trace`.

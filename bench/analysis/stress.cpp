@@ -6,6 +6,7 @@
 #include "scene_library.h"
 #include "text_table.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -14,10 +15,13 @@
 namespace chainbench {
 namespace {
 
-// What a child reports back through its pipe.
+// What a child reports back through its pipe: plain data of a fixed size.
+constexpr std::size_t kMaxCounters = 16;
 struct Summary {
   double max_penetration, peak_speed, speed_bound, ms_per_step;
-  std::uint64_t budget_hits, crush_events;
+  double counters[kMaxCounters];
+  std::uint64_t degraded_steps;
+  std::uint32_t counter_count;
   std::uint8_t finite, in_bounds, blow_up, tunnelled, expect_pass, judged;
   char detail[480];
   char error[240];
@@ -36,7 +40,9 @@ Summary summarize_case(const StressCase& c, const EngineSpec& engine) {
     s.finite = *m.finite, s.in_bounds = *m.in_bounds, s.blow_up = *m.blow_up;
     s.tunnelled = *m.tunnelled;
     s.expect_pass = !run.expect || run.expect->pass;
-    if (run.chain) s.budget_hits = run.chain->budget_hits, s.crush_events = run.chain->crush_events;
+    s.degraded_steps = run.degraded_steps;
+    s.counter_count = static_cast<std::uint32_t>(std::min(run.counters.size(), kMaxCounters));
+    std::copy_n(run.counters.begin(), s.counter_count, s.counters);
     s.judged = static_cast<std::uint8_t>(run.verdict->worst);
     if (!run.verdict->findings.empty())
       std::snprintf(s.detail, sizeof s.detail, "%s", run.verdict->findings.front().detail.c_str());
@@ -106,28 +112,8 @@ std::vector<StressCase> stress_cases() {
   return cases;
 }
 
-const std::vector<KnownFailure>& known_failures() {
-  static const std::vector<KnownFailure> known = [] {
-    const std::string modern = parse_engine_spec("chain").str();
-    const char* through =
-        "push-out moves bodies through others within a step (no continuous "
-        "collision yet)";
-    const char* squeeze =
-        "a crushed row takes its whole squeeze at one end, whose boxes then "
-        "pass each other";
-    return std::vector<KnownFailure>{
-        {"projectile speed=500", modern, through},
-        {"overlap_recovery overlap=0.5", modern, through},
-        {"overlapping_pile n=1000", modern, through},
-        {"overlapping_pile n=200", modern, through},
-        {"converging_walls n=10", modern, squeeze},
-        {"converging_walls n=1000", modern, squeeze},
-    };
-  }();
-  return known;
-}
-
 VerdictClass StressVerdict::verdict() const {
+  if (!skipped.empty()) return VerdictClass::kSkipped;
   if (hang) return VerdictClass::kHang;
   if (!finished) return VerdictClass::kCrash;
   if (!error.empty()) return VerdictClass::kError;
@@ -135,6 +121,7 @@ VerdictClass StressVerdict::verdict() const {
 }
 
 std::string StressVerdict::verdict_detail() const {
+  if (!skipped.empty()) return skipped;
   if (hang) return "ran out of time";
   if (!finished && signal != 0) return "died of signal " + std::to_string(signal);
   if (!finished) return "exited with status " + std::to_string(exit_status) + " and no result";
@@ -144,21 +131,28 @@ std::string StressVerdict::verdict_detail() const {
 
 bool StressVerdict::stable() const {
   return finished && error.empty() && finite && in_bounds && !blow_up && !tunnelled &&
-         budget_hits == 0;
+         degraded_steps == 0;
 }
 
 bool StressVerdict::fatal() const {
   const VerdictClass v = verdict();
-  return v != VerdictClass::kOk && v != VerdictClass::kBudget && known_failure.empty();
+  return is_gate(engine) && v != VerdictClass::kOk && v != VerdictClass::kBudget &&
+         known_failure.empty();
 }
 
 StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, double timeout_s) {
   StressVerdict v;
   v.case_label = c.label();
   v.group = c.group;
-  v.engine = engine.str();
-  for (const KnownFailure& k : known_failures()) {
-    if (k.case_label == v.case_label && k.engine == v.engine) v.known_failure = k.reason;
+  v.engine = engine;
+  v.known_failure = known_failure(engine, v.case_label);
+  try {
+    if (std::string why = missing_capability(engine, make_scene(c.scene, c.sets)); !why.empty()) {
+      v.skipped = why;
+      return v;
+    }
+  } catch (const std::exception&) {
+    // A case that cannot be built: the child says why, as an error verdict.
   }
   Summary s{};
   const ChildOutcome child = run_in_child([&] { return summarize_case(c, engine); }, s, timeout_s);
@@ -173,21 +167,43 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
   v.ms_per_step = s.ms_per_step;
   v.finite = s.finite, v.in_bounds = s.in_bounds, v.blow_up = s.blow_up;
   v.tunnelled = s.tunnelled, v.expect_pass = s.expect_pass;
-  v.budget_hits = s.budget_hits, v.crush_events = s.crush_events;
+  v.degraded_steps = s.degraded_steps;
+  v.counters.assign(s.counters, s.counters + s.counter_count);
   return v;
 }
 
 void print_stress_table(std::ostream& out, const std::vector<StressVerdict>& verdicts) {
-  TextTable t({"case", "engine", "verdict", "max pen m", "peak m/s", "crushes", "budget", "ms/step",
-               "wall s", "why"});
+  // The counters some engine gives a table column (registry.h), in the order they first appear.
+  std::vector<std::string> columns;
+  for (const StressVerdict& v : verdicts) {
+    for (const CounterDef& c : engine_def(v.engine.engine).counters) {
+      if (!c.column.empty() && std::find(columns.begin(), columns.end(), c.column) == columns.end())
+        columns.push_back(c.column);
+    }
+  }
+  auto counter_cell = [&](const StressVerdict& v, const std::string& title) {
+    const std::vector<CounterDef>& defs = engine_def(v.engine.engine).counters;
+    for (std::size_t c = 0; c < defs.size() && c < v.counters.size(); ++c) {
+      if (defs[c].column == title) return fmt_g(v.counters[c]);
+    }
+    return std::string("-");
+  };
+  std::vector<std::string> header = {"case", "engine", "verdict", "max pen m", "peak m/s"};
+  header.insert(header.end(), columns.begin(), columns.end());
+  header.insert(header.end(), {"ms/step", "wall s", "why"});
+  TextTable t(header);
   for (const StressVerdict& v : verdicts) {
     const bool done = v.finished && v.error.empty();
     std::string verdict = to_string(v.verdict());
     if (!v.known_failure.empty()) verdict += " (known)";
-    t.add({v.case_label, parse_engine_spec(v.engine).short_str(), verdict,
-           done ? fmt_g(v.max_penetration) : "-", done ? fmt_g(v.peak_speed) : "-",
-           done ? std::to_string(v.crush_events) : "-", done ? std::to_string(v.budget_hits) : "-",
-           done ? fmt_ms(v.ms_per_step) : "-", fmt_g(v.wall_s, 3), v.verdict_detail()});
+    std::vector<std::string> row = {v.case_label, v.engine.label(), verdict,
+                                    done ? fmt_g(v.max_penetration) : "-",
+                                    done ? fmt_g(v.peak_speed) : "-"};
+    for (const std::string& column : columns)
+      row.push_back(done ? counter_cell(v, column) : "-");
+    row.insert(row.end(),
+               {done ? fmt_ms(v.ms_per_step) : "-", fmt_g(v.wall_s, 3), v.verdict_detail()});
+    t.add(row);
   }
   t.print(out);
   std::map<std::string, int> by_verdict;
@@ -203,8 +219,8 @@ void print_stress_table(std::ostream& out, const std::vector<StressVerdict>& ver
     if (v.known_failure.empty()) continue;
     if (first) out << "known failures (reported, not counted in the exit status):\n";
     first = false;
-    out << "  " << v.case_label << " in " << parse_engine_spec(v.engine).short_str() << ": "
-        << to_string(v.verdict()) << "; " << v.known_failure << "\n";
+    out << "  " << v.case_label << " in " << v.engine.label() << ": " << to_string(v.verdict())
+        << "; " << v.known_failure << "\n";
   }
 }
 
@@ -218,8 +234,8 @@ nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, b
     ordered_json c;
     c["case"] = v.case_label;
     c["group"] = v.group;
-    c["engine"] = v.engine;
-    c["label"] = parse_engine_spec(v.engine).short_str();
+    c["engine"] = v.engine.str();
+    c["label"] = v.engine.label();
     c["verdict"] = to_string(v.verdict());
     c["detail"] = v.verdict_detail();
     c["stable"] = v.stable();
@@ -232,8 +248,15 @@ nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, b
       c["blow_up"] = v.blow_up;
       c["tunnelled"] = v.tunnelled;
       c["expect_pass"] = v.expect_pass;
-      c["budget_hits"] = v.budget_hits;
-      c["crush_events"] = v.crush_events;
+      c["degraded_steps"] = v.degraded_steps;
+      nlohmann::ordered_json counters = nlohmann::ordered_json::object();
+      const std::vector<CounterDef>& defs = engine_def(v.engine.engine).counters;
+      for (std::size_t k = 0; k < defs.size() && k < v.counters.size(); ++k)
+        counters[defs[k].name] = json_number(v.counters[k]);
+      // The first stress JSON's two counters keep their keys: null for an engine without them.
+      for (const char* legacy : {"budget_hits", "crush_events"})
+        c[legacy] = counters.contains(legacy) ? counters[legacy] : nlohmann::ordered_json(nullptr);
+      c["counters"] = std::move(counters);
       c["max_penetration"] = json_number(v.max_penetration);
       c["peak_speed"] = json_number(v.peak_speed);
       c["speed_bound"] = json_number(v.speed_bound);

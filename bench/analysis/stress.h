@@ -27,17 +27,9 @@ struct StressCase {
 // The full matrix; cases with quick = true form --quick.
 std::vector<StressCase> stress_cases();
 
-// A case the modern solver is known to fail, and why: printed in the table and its own list,
-// never skipped, and not counted in the exit status.
-struct KnownFailure {
-  std::string case_label;
-  std::string engine;  // canonical spec
-  std::string reason;
-};
-const std::vector<KnownFailure>& known_failures();
-
 struct StressVerdict {
-  std::string case_label, group, engine;
+  std::string case_label, group;
+  EngineSpec engine;
   bool finished = false;  // false: the child crashed or ran out of time
   bool hang = false;
   int signal = 0;                           // the signal that ended the child, if one did
@@ -46,16 +38,18 @@ struct StressVerdict {
   VerdictClass judged = VerdictClass::kOk;  // the child's verdict on a finished run
   std::string detail;                       // what it rests on
   bool finite = true, in_bounds = true, blow_up = false, tunnelled = false, expect_pass = true;
-  std::uint64_t budget_hits = 0, crush_events = 0;
+  std::uint64_t degraded_steps = 0;
+  std::vector<double> counters;  // the engine's counters over the run (registry.h)
   double max_penetration = 0.0, peak_speed = 0.0, speed_bound = 0.0;
   double ms_per_step = 0.0, wall_s = 0.0;
   std::string known_failure;  // the reason, when this case and engine are a known failure
+  std::string skipped;        // why the engine could not run the case (it was not run)
 
   VerdictClass verdict() const;  // crash, hang, error, or the child's verdict
   std::string verdict_detail() const;
   bool stable() const;
-  // Whether this verdict, on the modern solver, fails the stress run: anything but ok or
-  // budget, unless the case is a known failure.
+  // Whether this verdict fails the stress run: the engine is a gate (registry.h) and the verdict
+  // is anything but ok or budget on a case not listed as its known failure.
   bool fatal() const;
 };
 

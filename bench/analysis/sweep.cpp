@@ -10,18 +10,6 @@
 namespace chainbench {
 namespace {
 
-std::vector<std::string> split(std::string_view text, char separator) {
-  std::vector<std::string> out(1);
-  for (const char ch : text) {
-    if (ch == separator) {
-      out.emplace_back();
-    } else {
-      out.back() += ch;
-    }
-  }
-  return out;
-}
-
 // The error of a point against the scene's expectations: the largest of its entries' errors
 // (distance from an expected centre, or how far beyond a bound or limit), and the root mean square
 // over every body each entry names.
@@ -40,56 +28,8 @@ PositionError expectation_error(const ExpectResult& r) {
 
 }  // namespace
 
-std::vector<EngineSpec> parse_grid(std::string_view text) {
-  const std::string where = "--grid \"" + std::string(text) + "\"";
-  const std::size_t colon = text.find(':');
-  const std::string engine(text.substr(0, colon));
-  std::vector<std::pair<std::string, std::vector<std::string>>> axes;
-  if (colon != std::string_view::npos) {
-    for (const std::string& part : split(text.substr(colon + 1), ';')) {
-      const std::size_t eq = part.find('=');
-      if (eq == std::string::npos || eq == 0 || eq + 1 == part.size()) {
-        throw InputError(where + ": \"" + part + "\" is not key=value,value,...");
-      }
-      axes.emplace_back(part.substr(0, eq), split(part.substr(eq + 1), ','));
-    }
-  }
-  std::size_t total = 1;
-  for (const auto& [key, values] : axes) {
-    total *= values.size();
-    if (total > 10'000) throw InputError(where + ": more than 10,000 combinations");
-  }
-  std::vector<EngineSpec> out;
-  for (std::size_t k = 0; k < total; ++k) {
-    std::string spec = engine;
-    std::size_t rest = k;
-    for (std::size_t a = 0; a < axes.size(); ++a) {
-      const auto& [key, values] = axes[a];
-      spec += (a == 0 ? ":" : ",") + key + "=" + values[rest % values.size()];
-      rest /= values.size();
-    }
-    out.push_back(parse_engine_spec(spec));  // validates keys and values
-  }
-  return out;
-}
-
-std::vector<EngineSpec> default_grid() {
-  std::vector<EngineSpec> grid;
-  for (const char* spec : {"chain", "chain:velocity=zero", "chain:variant=seed2014",
-                           "chain:variant=seed2014,velocity=inelastic", "chain:passes=1",
-                           "chain:passes=2", "chain:budget=4", "chain:budget=16"}) {
-    grid.push_back(parse_engine_spec(spec));
-  }
-  for (const auto& list : {"box2d:vel_iters=1,2,4,8,16", "box2d:pos_iters=0,1,8",
-                           "box2d:substeps=2,4,8", "box2d:skin=raw"}) {
-    for (EngineSpec& s : parse_grid(list))
-      grid.push_back(std::move(s));
-  }
-  return grid;
-}
-
 SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
-                  const std::string& reference, const SweepOptions& options) {
+                  const EngineSpec& reference, const SweepOptions& options) {
   SweepResult result;
   result.scene = scene.name;
   result.bodies = static_cast<int>(scene.bodies.size());
@@ -106,10 +46,10 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
   if (use_expect) {
     result.reference = "expect";
   } else {
-    const EngineSpec ref = parse_engine_spec(reference);
-    result.reference = ref.str();
-    report("reference " + ref.short_str());
-    result.reference_run = run_engine(scene, ref, run_options);
+    result.reference = reference.str();
+    result.reference_label = reference.label();
+    report("reference " + reference.label());
+    result.reference_run = run_engine(scene, reference, run_options);
     ++done;
     if (result.reference_run->interrupted) {
       result.interrupted = true;
@@ -118,7 +58,7 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
   }
   for (const EngineSpec& spec : grid) {
     if (stopped()) break;
-    report(spec.short_str());
+    report(spec.label());
     SweepPoint point;
     point.run = run_engine(scene, spec, run_options);
     if (point.run.interrupted) break;  // a half-run point says nothing; keep the others
@@ -159,14 +99,14 @@ void print_sweep_table(std::ostream& out, const SweepResult& r) {
   out << "scene " << r.scene << ": " << r.bodies << " bodies, " << r.steps
       << " steps; error against "
       << (r.reference == "expect" ? "the scene's expectations"
-                                  : parse_engine_spec(r.reference).short_str())
+                                  : r.reference_label)
       << (r.interrupted ? " (interrupted: the points measured so far)" : "") << "\n\n";
   TextTable t({"engine", "ms/step", "+- ms", "err max m", "err rms m", "EFD/body-step m",
                "max pen m", "stable", "verdict", "pareto"});
   auto opt = [](const std::optional<double>& v) { return v ? fmt_g(*v) : std::string("-"); };
   for (const SweepPoint& p : r.points) {
     const auto stable = p.run.stable();
-    t.add({parse_engine_spec(p.run.engine).short_str(), fmt_ms(p.run.timing.median_ms),
+    t.add({p.run.spec.label(), fmt_ms(p.run.timing.median_ms),
            fmt_ms(p.run.timing.spread_ms), fmt_g(p.error.max), fmt_g(p.error.rms),
            opt(p.run.metrics.efd_per_body_step), opt(p.run.metrics.max_penetration),
            stable ? (*stable ? "yes" : "NO") : "-",
@@ -185,7 +125,7 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
     s["scene"] = {{"name", r.scene}, {"bodies", r.bodies}, {"steps", r.steps}};
     s["reference"] = r.reference;
     s["reference_label"] =
-        r.reference == "expect" ? r.reference : parse_engine_spec(r.reference).short_str();
+        r.reference == "expect" ? r.reference : r.reference_label;
     if (r.reference_run) s["reference_ms_per_step"] = r.reference_run->timing.median_ms;
     s["interrupted"] = r.interrupted;
     s["points"] = ordered_json::array();
@@ -193,7 +133,7 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
       const Metrics& m = p.run.metrics;
       ordered_json point;
       point["engine"] = p.run.engine;
-      point["label"] = parse_engine_spec(p.run.engine).short_str();
+      point["label"] = p.run.spec.label();
       point["ms_per_step"] = p.run.timing.median_ms;
       point["ms_spread"] = p.run.timing.spread_ms;
       point["final_position_error"] = {{"max", json_number(p.error.max)},
@@ -205,7 +145,8 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
       point["stable"] = stable ? ordered_json(*stable) : ordered_json(nullptr);
       point["pareto"] = p.pareto;
       if (p.run.verdict) point["verdict"] = to_string(p.run.verdict->worst);
-      if (p.run.chain) point["budget_hits"] = p.run.chain->budget_hits;
+      if (const auto hits = p.run.counter("budget_hits")) point["budget_hits"] = *hits;
+      point["degraded_steps"] = p.run.degraded_steps;
       s["points"].push_back(std::move(point));
     }
     j["scenes"].push_back(std::move(s));

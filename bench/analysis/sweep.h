@@ -19,17 +19,6 @@
 
 namespace chainbench {
 
-// The reference of a sweep when the scene has no expectations: Box2D at 8 sub-steps and 20/10
-// iterations, finer than any default point.
-inline constexpr const char* kSweepReference = "box2d:vel_iters=20,pos_iters=10,substeps=8";
-
-// "NAME:key=v1,v2;key=v3,v4" -> every combination of the listed values, the other keys at their
-// defaults. Throws InputError for unknown engines, keys or values, or more than 10,000 points.
-std::vector<EngineSpec> parse_grid(std::string_view text);
-// One setting at a time around the defaults: Box2D's velocity and position iterations and
-// sub-steps; the chain variants and velocity rules, sweeps and budgets. About 20 points.
-std::vector<EngineSpec> default_grid();
-
 struct SweepPoint {
   EngineRun run;
   PositionError error;  // against the reference run, or the scene's expectations
@@ -41,6 +30,7 @@ struct SweepResult {
   int bodies = 0;
   int steps = 0;
   std::string reference;  // the reference engine spec, or "expect"
+  std::string reference_label;
   std::optional<EngineRun> reference_run;
   std::vector<SweepPoint> points;
   bool interrupted = false;
@@ -53,7 +43,7 @@ struct SweepOptions {
 
 // Runs every spec on the scene; the reference first (unless the scene has expectations).
 SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
-                  const std::string& reference, const SweepOptions& options);
+                  const EngineSpec& reference, const SweepOptions& options);
 
 // How far a point's median ms/step may be from its true value: half the interquartile range of its
 // step times, and at least 5% of the median.

@@ -19,6 +19,8 @@ std::string at_state(int k) {
 
 const char* to_string(VerdictClass c) {
   switch (c) {
+    case VerdictClass::kSkipped:
+      return "skipped";
     case VerdictClass::kOk:
       return "ok";
     case VerdictClass::kBudget:

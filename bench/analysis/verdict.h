@@ -28,6 +28,7 @@
 namespace chainbench {
 
 enum class VerdictClass : std::uint8_t {
+  kSkipped,  // not run: the engine cannot do what the scene needs (stress)
   kOk,
   kBudget,
   kPenetrating,

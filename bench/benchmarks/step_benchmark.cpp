@@ -3,9 +3,11 @@
 // Each benchmark builds its scene and engine, steps it through a warm-up (the world settles and
 // every buffer reaches its working size), then times single steps. Families are keyed by body
 // count where the scene scales, so --benchmark_format=json carries a complexity fit over it.
-// Counters: bodies, contacts per step (chain only), time per body per step, budget hits.
+// Counters: bodies, time per body per step, the share of steps cut short, and every counter the
+// engine declares (registry.h), contacts among them.
 #include "engine.h"
 #include "engine_spec.h"
+#include "registry.h"
 #include "metrics.h"
 #include "scene_library.h"
 
@@ -26,25 +28,20 @@ struct Family {
   int warmup;
 };
 
-void step_benchmark(benchmark::State& state, const Family& family, const std::string& engine_spec) {
+void step_benchmark(benchmark::State& state, const Family& family, const EngineSpec& spec) {
   std::vector<std::string> sets = family.sets;
   if (!family.size_key.empty())
     sets.push_back(family.size_key + "=" + std::to_string(state.range(0)));
   sets.push_back("steps=10000000");  // drivers and windows must outlast the benchmark
   const Scene scene = make_scene(family.scene, sets);
-  const auto engine = make_engine(parse_engine_spec(engine_spec), scene);
+  const auto engine = make_engine(spec, scene);
   int step = 0;
   for (; step < family.warmup; ++step)
     engine->step(step);
-
-  double contacts = 0.0, budget_hits = 0.0;
-  const chain::StepStats* stats = engine->chain_stats();
+  double degraded = 0.0;
   for (auto _ : state) {
     engine->step(step++);
-    if (stats) {
-      contacts += stats->contacts;
-      budget_hits += stats->budget_hits;
-    }
+    degraded += engine->degraded();
   }
   const auto bodies = static_cast<double>(scene.bodies.size());
   const auto iterations = static_cast<double>(state.iterations());
@@ -52,18 +49,30 @@ void step_benchmark(benchmark::State& state, const Family& family, const std::st
   // Seconds per body per step (shown as ns); in JSON, seconds.
   state.counters["per_body"] = benchmark::Counter(
       bodies * iterations, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
-  if (stats) {
-    state.counters["contacts"] = contacts / iterations;
-    state.counters["budget_hits"] = budget_hits / iterations;
+  state.counters["degraded"] = degraded / iterations;
+  // The engine's own counters, gathered over a few more steps outside the timing (some engines
+  // count by walking their contacts).
+  const std::vector<CounterDef>& defs = engine_def(spec.engine).counters;
+  std::vector<double> totals(defs.size(), 0.0);
+  constexpr int kCounted = 16;
+  for (int k = 0; k < kCounted; ++k) {
+    engine->step(step++);
+    const std::span<const double> values = engine->counters();
+    for (std::size_t c = 0; c < totals.size() && c < values.size(); ++c) {
+      totals[c] = defs[c].aggregate == Aggregate::kMax ? std::max(totals[c], values[c])
+                                                       : totals[c] + values[c] / kCounted;
+    }
   }
+  for (std::size_t c = 0; c < defs.size(); ++c)
+    state.counters[defs[c].name] = totals[c];
   state.SetComplexityN(static_cast<benchmark::IterationCount>(bodies));
 }
 
-// What the harness adds: the chain engine on pyramid base=100, stepped bare (0), or stepped with
+// What the harness adds: the first default engine on pyramid base=100, stepped bare (0), or stepped with
 // the state read back and every metric of `chainbench run` computed after each step (1).
-void harness_benchmark(benchmark::State& state) {
+void harness_benchmark(benchmark::State& state, const EngineSpec& spec) {
   const Scene scene = make_scene("pyramid", {"base=100", "steps=10000000"});
-  const auto engine = make_engine(parse_engine_spec("chain"), scene);
+  const auto engine = make_engine(spec, scene);
   const bool metrics = state.range(0) != 0;
   MetricsRecorder recorder(scene, MetricSelection{});
   BodyState before(scene.bodies.size()), after(scene.bodies.size());
@@ -82,22 +91,15 @@ void harness_benchmark(benchmark::State& state) {
   state.counters["bodies"] = static_cast<double>(scene.bodies.size());
 }
 
-struct Engine {
-  const char* label;
-  const char* spec;
-  int max_bodies;  // beyond this the engine is not run (Box2D: a run must stay under a minute)
-};
-
 void register_all() {
-  benchmark::RegisterBenchmark("harness/pyramid100/metrics", harness_benchmark)
+  const EngineSpec fastest = default_engines().front();
+  benchmark::RegisterBenchmark("harness/pyramid100/metrics",
+                               [fastest](benchmark::State& s) { harness_benchmark(s, fastest); })
       ->Arg(0)
       ->Arg(1)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime()
       ->MinTime(0.5);
-  const std::vector<Engine> engines = {{"chain", "chain", 2'000'000},
-                                       {"seed2014", "chain:variant=seed2014", 150'000},
-                                       {"box2d", "box2d", 150'000}};
   const std::vector<Family> families = {
       {"stack", "", {0}, {}, 120},
       {"pyramid", "base", {20, 100}, {}, 60},
@@ -105,28 +107,27 @@ void register_all() {
       {"push_row", "n", {100, 10'000}, {}, 30},
       {"random_pile", "n", {1'000, 10'000, 100'000, 1'000'000}, {}, 30},
   };
+  // Every engine's benchmark settings, named by their labels: pyramid/box2d/100.
   for (const Family& family : families) {
-    for (const Engine& engine : engines) {
-      auto* b = benchmark::RegisterBenchmark(
-          (family.scene + "/" + engine.label).c_str(),
-          [family, spec = std::string(engine.spec)](benchmark::State& s) {
-            step_benchmark(s, family, spec);
-          });
-      b->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.5);
-      bool any = false;
-      for (const int size : family.sizes) {
-        SceneParams params;
-        for (const SceneParam& p : all_params(*find_recipe(family.scene)))
-          params.set(p.key, p.value);
-        if (!family.size_key.empty()) params.set(family.size_key, size);
-        if (find_recipe(family.scene)->body_count(params) >
-            static_cast<std::size_t>(engine.max_bodies))
-          continue;
-        b->Arg(size);
-        any = true;
+    for (const EngineDef& def : engine_registry()) {
+      for (const auto& [text, max_bodies] : def.benchmarks) {
+        const EngineSpec spec = parse_engine_spec(text);
+        auto* b = benchmark::RegisterBenchmark(
+            (family.scene + "/" + spec.label()).c_str(),
+            [family, spec](benchmark::State& s) { step_benchmark(s, family, spec); });
+        b->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.5);
+        bool any = false;
+        for (const int size : family.sizes) {
+          SceneParams params;
+          for (const SceneParam& p : all_params(*find_recipe(family.scene)))
+            params.set(p.key, p.value);
+          if (!family.size_key.empty()) params.set(family.size_key, size);
+          if (find_recipe(family.scene)->body_count(params) > max_bodies) continue;
+          b->Arg(size);
+          any = true;
+        }
+        if (any && family.sizes.size() > 1) b->Complexity(benchmark::oN);
       }
-      if (!any) continue;
-      if (family.sizes.size() > 1) b->Complexity(benchmark::oN);
     }
   }
 }

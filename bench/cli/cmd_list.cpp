@@ -1,6 +1,7 @@
 // chainbench list, chainbench engines: what can be run, and with which keys.
 #include "commands.h"
 #include "engine_spec.h"
+#include "registry.h"
 #include "scene_library.h"
 #include "text_table.h"
 
@@ -34,21 +35,49 @@ int list_scenes() {
   return 0;
 }
 
+std::string capabilities(const EngineSpec& spec) {
+  const Capabilities c = engine_def(spec.engine).capabilities(spec);
+  std::string s;
+  auto add = [&](bool has, const char* what) {
+    if (has) s += (s.empty() ? "" : ", ") + std::string(what);
+  };
+  add(c.rotation, "rotation");
+  add(c.friction, "friction");
+  add(c.restitution, "restitution");
+  add(c.kinematic, "kinematic bodies");
+  add(c.axis_drives, "per-axis drives");
+  return s.empty() ? "none of rotation, friction, restitution, kinematic bodies, per-axis drives"
+                   : s;
+}
+
 int list_engines() {
   std::cout << "Engines (--engines SPEC,SPEC...; a spec is NAME[:key=value,...])\n";
-  for (const EngineInfo& e : engine_catalog()) {
+  for (const EngineDef& e : engine_registry()) {
     std::cout << "\n" << e.name << ": " << e.description << "\n";
     TextTable t({"  key", "default", "values", "meaning"});
-    for (const EngineKey& k : e.keys) {
+    for (const KeyDef& k : e.keys) {
       std::string values;
       for (const std::string& c : k.choices)
         values += (values.empty() ? "" : "|") + c;
-      if (values.empty()) values = "[" + std::to_string(k.min) + ", " + std::to_string(k.max) + "]";
-      t.add({"  " + k.name, k.default_value.empty() ? "(see meaning)" : k.default_value, values,
-             k.help});
+      if (values.empty())
+        values = "[" + fmt_g(k.min, 9) + ", " + fmt_g(k.max, 9) + "]" + (k.integer ? " whole" : "");
+      std::string def = k.default_value.empty() ? "(required)" : k.default_value;
+      for (const auto& [when, then] : k.default_when)
+        def += ", " + then + " if " + k.depends_on + "=" + when;
+      t.add({"  " + k.name, def, values, k.help});
     }
+    if (e.open_keys) t.add({"  (others)", "", "", "passed to the engine as they are"});
     t.print(std::cout);
-    std::cout << "  canonical default: " << parse_engine_spec(e.name).str() << "\n";
+    if (!e.defaults.empty()) {
+      std::cout << "  canonical default: " << parse_engine_spec(e.name).str() << "\n";
+      std::string runs;
+      for (const std::string& d : e.defaults)
+        runs += (runs.empty() ? "" : ", ") + d;
+      std::cout << "  run by default: " << runs << (e.reference ? " (the default reference)" : "")
+                << "\n";
+      for (const std::string& d : e.defaults)
+        std::cout << "  " << d << " can do: " << capabilities(parse_engine_spec(d)) << "\n";
+    }
   }
   return 0;
 }

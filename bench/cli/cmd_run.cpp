@@ -1,5 +1,6 @@
 // chainbench run: one scene in several engines, side by side.
 #include "commands.h"
+#include "engine_choice.h"
 #include "input_error.h"
 #include "output_file.h"
 #include "progress.h"
@@ -21,8 +22,8 @@ struct RunArgs {
   std::string scene;
   std::string scene_file;
   std::vector<std::string> sets;
-  std::string engines = "chain,chain:variant=seed2014,box2d";
-  std::string reference = "box2d";
+  std::string engines;    // empty: every engine's defaults that can run the scene
+  std::string reference;  // empty: the registry's reference engine
   int steps = 0;
   std::string json, csv, trace;
   std::string metrics = "all";
@@ -49,17 +50,24 @@ int run(const RunArgs& a) {
   Scene scene = a.scene_file.empty() ? make_scene(a.scene, sets) : load_scene_file(a.scene_file);
   std::string note;
   if (!a.scene_file.empty() && a.steps > 0) note = set_run_length(scene, a.steps, a.scene_file);
-  const std::vector<EngineSpec> engines = parse_engine_list(a.engines);
+  const EngineChoice choice = choose_engines(a.engines, {&scene});
+  const std::vector<EngineSpec>& engines = choice.engines;
   std::optional<EngineSpec> reference;
-  if (a.reference != "none") reference = parse_engine_spec(a.reference);
-  std::vector<std::string> required;
-  for (const std::string& text : a.require) {
-    const std::string spec = parse_engine_spec(text).str();
-    if (std::none_of(engines.begin(), engines.end(),
-                     [&](const EngineSpec& e) { return e.str() == spec; })) {
-      throw InputError("--require " + text + ": not among --engines (" + a.engines + ")");
+  if (a.reference != "none") {
+    reference = a.reference.empty() ? default_reference() : parse_engine_spec(a.reference);
+    if (std::string why = missing_capability(*reference, scene); !why.empty()) {
+      if (!a.reference.empty()) throw InputError("--reference: scene " + scene.name + ": " + why);
+      reference.reset();  // the default reference cannot run this scene: compare with none
     }
-    required.push_back(spec);
+  }
+  std::vector<EngineSpec> required;
+  for (const std::string& text : a.require) {
+    EngineSpec spec = parse_engine_spec(text);
+    if (std::find(engines.begin(), engines.end(), spec) == engines.end()) {
+      throw InputError("--require " + text + ": not among the engines run (" +
+                       (a.engines.empty() ? default_engine_list() : a.engines) + ")");
+    }
+    required.push_back(std::move(spec));
   }
   RunOptions options;
   options.metrics = parse_metric_selection(a.metrics);
@@ -88,28 +96,28 @@ int run(const RunArgs& a) {
   for (const EngineSpec& spec : engines)
     report.runs.push_back(run_one(spec));
   if (reference) {
-    report.reference_spec = reference->str();
-    const bool included =
-        std::any_of(report.runs.begin(), report.runs.end(),
-                    [&](const EngineRun& r) { return r.engine == report.reference_spec; });
+    report.reference_spec = *reference;
+    const bool included = std::any_of(report.runs.begin(), report.runs.end(),
+                                      [&](const EngineRun& r) { return r.spec == *reference; });
     if (!included) report.reference = run_one(*reference);
   }
   compare(report);
 
   print_run_table(std::cout, report);
   if (!note.empty()) std::cout << "\nnote: " << note << '\n';
+  for (const std::string& left_out : choice.notes)
+    std::cout << "note: " << left_out << '\n';
   if (json_out) *json_out << run_json(report).dump(2) << '\n';
   if (csv_out) write_run_csv(*csv_out, report);
   finish_output(json_out.get(), a.json);
   finish_output(csv_out.get(), a.csv);
   finish_output(trace_out.get(), a.trace);
   int status = 0;
-  for (const std::string& spec : required) {
+  for (const EngineSpec& spec : required) {
     const auto run = std::find_if(report.runs.begin(), report.runs.end(),
-                                  [&](const EngineRun& r) { return r.engine == spec; });
+                                  [&](const EngineRun& r) { return r.spec == spec; });
     for (const std::string& why : shortfalls(*run)) {
-      std::cerr << "chainbench: required engine " << parse_engine_spec(spec).short_str()
-                << " fails: " << why << '\n';
+      std::cerr << "chainbench: required engine " << spec.label() << " fails: " << why << '\n';
       status = 3;
     }
   }
@@ -126,12 +134,12 @@ void add_run_command(CLI::App& app, int* status) {
   auto* file = run_app->add_option("--scene-file", args->scene_file, "scene file (JSON, schema 1)");
   scene->excludes(file);
   run_app->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
-  run_app
-      ->add_option("--engines", args->engines, "engine specs, comma separated (chainbench engines)")
-      ->capture_default_str();
-  run_app
-      ->add_option("--reference", args->reference, "engine the others are compared with, or none")
-      ->capture_default_str();
+  run_app->add_option("--engines", args->engines,
+                      "engine specs, comma separated (chainbench engines); default: " +
+                          default_engine_list() + ", those that can run the scene");
+  run_app->add_option("--reference", args->reference,
+                      "engine the others are compared with, or none; default: " +
+                          default_reference().label());
   run_app->add_option("--steps", args->steps, "steps to run instead of the scene's")
       ->check(CLI::Range(1, 10'000'000));
   run_app->add_option("--json", args->json, "write the chainbench.run/1 JSON here");

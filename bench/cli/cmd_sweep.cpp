@@ -1,5 +1,6 @@
 // chainbench sweep: error against run time over a grid of engine settings.
 #include "commands.h"
+#include "registry.h"
 #include "input_error.h"
 #include "output_file.h"
 #include "progress.h"
@@ -23,7 +24,7 @@ extern "C" void on_interrupt(int) {
 
 struct SweepArgs {
   std::vector<std::string> scenes, scene_files, sets, grids;
-  std::string reference = kSweepReference;
+  std::string reference;  // empty: the registry's accurate reference
   int steps = 0;
   std::string json, csv;
 };
@@ -52,8 +53,25 @@ int run(const SweepArgs& a) {
     for (EngineSpec& s : parse_grid(g))
       grid.push_back(std::move(s));
   }
-  if (grid.empty()) grid = default_grid();
-  parse_engine_spec(a.reference);
+  const bool given = !grid.empty();
+  if (!given) grid = default_sweep_grid();
+  // Per scene, the points whose engine can run it: a given grid must fit every scene, the
+  // default one leaves out what does not, with a note.
+  std::vector<std::vector<EngineSpec>> grids(scenes.size());
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    for (const EngineSpec& spec : grid) {
+      const std::string why = missing_capability(spec, scenes[k]);
+      if (why.empty()) {
+        grids[k].push_back(spec);
+      } else if (given) {
+        throw InputError("--grid: scene " + scenes[k].name + ": " + why);
+      } else {
+        notes.push_back(spec.label() + " left out of scene " + scenes[k].name + ": " + why);
+      }
+    }
+  }
+  const EngineSpec reference =
+      a.reference.empty() ? accurate_reference() : parse_engine_spec(a.reference);
   auto json_out = open_output(a.json, "--json");
   auto csv_out = open_output(a.csv, "--csv");
 
@@ -67,7 +85,7 @@ int run(const SweepArgs& a) {
     options.progress = [&](const std::string& label, int done, int total) {
       progress.update(scene.name + ": " + label, done, total);
     };
-    results.push_back(sweep(scene, grid, a.reference, options));
+    results.push_back(sweep(scene, grids[&scene - scenes.data()], reference, options));
     progress.clear();
     if (g_stop) break;
   }
@@ -105,9 +123,9 @@ void add_sweep_command(CLI::App& app, int* status) {
                         "default: one setting at a time around each engine's defaults");
   sweep_app
       ->add_option("--reference", args->reference,
-                   "engine the points are measured against, "
-                   "unless the scene has expectations")
-      ->capture_default_str();
+                   "engine the points are measured against, unless the scene has expectations; "
+                   "default: " +
+                       accurate_reference().label());
   sweep_app->add_option("--steps", args->steps, "steps to run instead of each scene's")
       ->check(CLI::Range(1, 10'000'000));
   sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here");

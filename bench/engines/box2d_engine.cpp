@@ -1,6 +1,6 @@
-// The Box2D reference world behind the Engine interface.
+// Box2D 2.4 (box2d_ref/) behind the Engine interface.
 #include "box2d_world.h"
-#include "engine.h"
+#include "registry.h"
 
 namespace chainbench {
 namespace {
@@ -12,6 +12,8 @@ Box2dSettings settings(const EngineSpec& spec) {
   s.substeps = static_cast<int>(spec.get_int("substeps"));
   s.compensate_skin = spec.get("skin") == "compensate";
   s.warm_starting = spec.get_int("warm") != 0;
+  s.continuous = spec.get_int("ccd") != 0;
+  s.sleep = spec.get_int("sleep") != 0;
   return s;
 }
 
@@ -22,15 +24,45 @@ class Box2dEngine final : public Engine {
   void read_state(BodyState& out) const override {
     world_.read_state(out.position, out.velocity, out.angle);
   }
+  // Counted here, outside the timed step.
+  std::span<const double> counters() const override {
+    contacts_ = static_cast<double>(world_.touching_contacts());
+    return {&contacts_, 1};
+  }
 
  private:
   Box2dWorld world_;
+  mutable double contacts_ = 0.0;
 };
 
 }  // namespace
 
-std::unique_ptr<Engine> make_box2d_engine(const EngineSpec& spec, const Scene& scene) {
-  return std::make_unique<Box2dEngine>(spec, scene);
+EngineDef register_box2d() {
+  EngineDef e;
+  e.name = "box2d";
+  e.description = "Box2D 2.4.1 (Debian libbox2d), fixed rotation unless the scene rotates";
+  e.keys = {whole_key("vel_iters", 8, 1, 1000, "velocity iterations"),
+            whole_key("pos_iters", 3, 0, 1000, "position iterations"),
+            whole_key("substeps", 1, 1, 1000, "world steps per scene step"),
+            choice_key("skin", "compensate", {"compensate", "raw"},
+                       "compensate: polygons built 7.5 mm smaller per side so boxes rest at their "
+                       "faces"),
+            whole_key("warm", 1, 0, 1, "warm starting"),
+            whole_key("ccd", 0, 0, 1, "continuous collision, every dynamic body a bullet"),
+            whole_key("sleep", 0, 0, 1, "bodies at rest fall asleep, as games ship it")};
+  e.capabilities = [](const EngineSpec&) {
+    return Capabilities{true, true, true, true, true};
+  };
+  e.counters = {{"contacts", Aggregate::kMean, "touching contacts after each step", ""}};
+  e.defaults = {"box2d"};
+  e.reference = true;
+  e.accurate = "box2d:vel_iters=20,pos_iters=10,substeps=8";
+  e.sweep = {"vel_iters=1,2,4,8,16", "pos_iters=0,1,8", "substeps=2,4,8", "skin=raw"};
+  e.benchmarks = {{"box2d", 150'000}};
+  e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
+    return std::make_unique<Box2dEngine>(spec, scene);
+  };
+  return e;
 }
 
 }  // namespace chainbench

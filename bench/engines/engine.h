@@ -1,14 +1,12 @@
-// One interface over both engines: build from a scene and a spec, step, read the state back.
-// A call per step, never per body: the adapters keep their own state in their engine's layout.
+// One interface over every engine: built from a scene and a spec (registry.h), stepped, read back.
+// A call per step, never per body: adapters keep their own state in their engine's layout.
 #pragma once
 
-#include "engine_spec.h"
 #include "scene.h"
 
-#include <chain/types.h>
-
-#include <memory>
+#include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace chainbench {
@@ -22,17 +20,33 @@ struct BodyState {
   explicit BodyState(std::size_t n = 0) : position(n), velocity(n), angle(n, 0.0) {}
 };
 
+// How a counter's per-step values add up over a run, as Google Benchmark's user counters do.
+enum class Aggregate : std::uint8_t {
+  kMean,  // per step on average: contacts, pair resolutions
+  kSum,   // over the run: events
+  kMax,   // the largest of any step: depths
+};
+
+// A figure an engine reports about each step, which the harness aggregates without knowing what
+// it means.
+struct CounterDef {
+  std::string name;  // in JSON, CSV and benchmark counters: "contacts", "budget_hits"
+  Aggregate aggregate = Aggregate::kMean;
+  std::string help;
+  std::string column;  // its title in `run`'s table, or empty to leave it to the JSON
+};
+
 class Engine {
  public:
   virtual ~Engine() = default;
-  // Applies the drivers active at scene step `step_index`, then advances one scene step.
+  // Applies the drives the scene holds at step `step_index` (DriveSchedule), then advances one
+  // scene step.
   virtual void step(int step_index) = 0;
   virtual void read_state(BodyState& out) const = 0;
-  // The chaining solver's counters for the last step; null for an engine that has none.
-  virtual const chain::StepStats* chain_stats() const { return nullptr; }
+  // The last step's counters, in the order of the engine's CounterDefs; empty if it has none.
+  virtual std::span<const double> counters() const { return {}; }
+  // Whether the engine cut the last step short to bound its work: the run is then `budget`.
+  virtual bool degraded() const { return false; }
 };
-
-// Throws InputError when the scene asks for something the engine cannot do.
-std::unique_ptr<Engine> make_engine(const EngineSpec& spec, const Scene& scene);
 
 }  // namespace chainbench

@@ -1,8 +1,10 @@
 #include "engine_spec.h"
 
 #include "input_error.h"
+#include "registry.h"
 
 #include <algorithm>
+#include <charconv>
 #include <stdexcept>
 
 namespace chainbench {
@@ -23,82 +25,89 @@ std::vector<std::string> split(std::string_view text, std::string_view separator
   return out;
 }
 
-std::string join_choices(const std::vector<std::string>& choices) {
+std::string join(const std::vector<std::string>& items, const char* separator) {
   std::string s;
-  for (const auto& c : choices)
-    s += (s.empty() ? "" : "|") + c;
+  for (const std::string& item : items)
+    s += (s.empty() ? "" : separator) + item;
   return s;
 }
 
-}  // namespace
-
-const std::vector<EngineInfo>& engine_catalog() {
-  static const std::vector<EngineInfo> catalog = {
-      {"chain",
-       "the collision-chaining solver of solver/ (no friction, no rotation)",
-       {{"variant",
-         "modern",
-         {"modern", "seed2014"},
-         0,
-         0,
-         "modern: chaining done right; seed2014: the 2014 engine, quirks included"},
-        {"velocity",
-         "",
-         {"zero", "inelastic"},
-         0,
-         0,
-         "velocity after a push; default inelastic, zero for variant=seed2014"},
-        {"passes", "4", {}, 1, 1000, "modern: contact sweeps per step, at most"},
-        {"budget", "64", {}, 1, 1000000, "pair resolutions per body per step (+1024)"},
-        {"depth", "2048", {}, 1, 16384, "seed2014: recursion depth limit"}}},
-      {"box2d",
-       "Box2D 2.4.1 (Debian libbox2d), fixed rotation unless the scene rotates, CCD and sleep off",
-       {{"vel_iters", "8", {}, 1, 1000, "velocity iterations"},
-        {"pos_iters", "3", {}, 0, 1000, "position iterations"},
-        {"substeps", "1", {}, 1, 1000, "world steps per scene step"},
-        {"skin",
-         "compensate",
-         {"compensate", "raw"},
-         0,
-         0,
-         "compensate: polygons built 7.5 mm smaller per side so boxes rest at their faces"},
-        {"warm", "1", {}, 0, 1, "warm starting"}}},
-  };
-  return catalog;
+// The shortest text that reads back as v.
+std::string shortest(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
 }
+
+// The default of `key` given the values of the keys before it.
+std::string default_of(const KeyDef& key,
+                       const std::vector<std::pair<std::string, std::string>>& settings) {
+  if (key.depends_on.empty()) return key.default_value;
+  for (const auto& [name, value] : settings) {
+    if (name != key.depends_on) continue;
+    for (const auto& [when, then] : key.default_when) {
+      if (value == when) return then;
+    }
+  }
+  return key.default_value;
+}
+
+// The value as the canonical string has it, or InputError.
+std::string checked_value(const std::string& where, const KeyDef& key, const std::string& value) {
+  if (!key.choices.empty()) {
+    if (std::find(key.choices.begin(), key.choices.end(), value) == key.choices.end()) {
+      throw InputError(where + ": " + key.name + " must be one of " + join(key.choices, "|") +
+                       ", got \"" + value + "\"");
+    }
+    return value;
+  }
+  if (key.integer) {
+    return std::to_string(parse_integer(where + ": " + key.name, value,
+                                        static_cast<long long>(key.min),
+                                        static_cast<long long>(key.max)));
+  }
+  const double v = parse_number(where + ": " + key.name, value);
+  if (v < key.min || v > key.max) {
+    throw InputError(where + ": " + key.name + ": " + value + " is out of range [" +
+                     shortest(key.min) + ", " + shortest(key.max) + "]");
+  }
+  return shortest(v);
+}
+
+}  // namespace
 
 const std::string& EngineSpec::get(std::string_view key) const {
   for (const auto& [k, v] : settings) {
     if (k == key) return v;
   }
-  throw std::logic_error("engine spec has no key " + std::string(key));
+  throw std::logic_error("engine spec " + str() + " has no key " + std::string(key));
 }
 
 long long EngineSpec::get_int(std::string_view key) const {
   return std::stoll(get(key));
 }
 
+double EngineSpec::get_number(std::string_view key) const {
+  return std::stod(get(key));
+}
+
 std::string EngineSpec::str() const {
   std::string s = engine;
-  for (std::size_t i = 0; i < settings.size(); ++i) {
+  for (std::size_t i = 0; i < settings.size(); ++i)
     s += (i == 0 ? ":" : ",") + settings[i].first + "=" + settings[i].second;
-  }
   return s;
 }
 
-std::string EngineSpec::short_str() const {
-  // A default can depend on the variant (each chain variant has its own velocity rule), so keys
-  // after the variant are compared with that variant's defaults: the short form must parse back to
-  // this very spec.
-  const EngineSpec defaults = parse_engine_spec(engine);
-  const EngineSpec variant_defaults =
-      engine == "chain" ? parse_engine_spec("chain:variant=" + get("variant")) : defaults;
+std::string EngineSpec::label() const {
+  const EngineDef& def = engine_def(engine);
   std::string s = engine;
   bool first = true;
-  for (std::size_t i = 0; i < settings.size(); ++i) {
-    const EngineSpec& d = settings[i].first == "variant" ? defaults : variant_defaults;
-    if (settings[i].second == d.settings[i].second) continue;
-    s += (first ? ":" : ",") + settings[i].first + "=" + settings[i].second;
+  for (const auto& [key, value] : settings) {
+    const auto declared = std::find_if(def.keys.begin(), def.keys.end(),
+                                       [&](const KeyDef& k) { return k.name == key; });
+    // A passed-on key is always shown; a declared one when it differs from its default here.
+    if (declared != def.keys.end() && value == default_of(*declared, settings)) continue;
+    s += (first ? ":" : ",") + key + "=" + value;
     first = false;
   }
   return s;
@@ -108,56 +117,91 @@ EngineSpec parse_engine_spec(std::string_view text) {
   const std::string where = "engine spec \"" + std::string(text) + "\"";
   const std::size_t colon = text.find(':');
   const std::string name(text.substr(0, colon));
-  const auto& catalog = engine_catalog();
-  const auto info = std::find_if(catalog.begin(), catalog.end(),
-                                 [&](const EngineInfo& e) { return e.name == name; });
-  if (info == catalog.end()) {
-    throw InputError(where + ": unknown engine \"" + name + "\" (known: chain, box2d)");
+  const auto& registry = engine_registry();
+  const auto def = std::find_if(registry.begin(), registry.end(),
+                                [&](const EngineDef& e) { return e.name == name; });
+  if (def == registry.end()) {
+    std::vector<std::string> known;
+    for (const EngineDef& e : registry)
+      known.push_back(e.name);
+    throw InputError(where + ": unknown engine \"" + name + "\" (known: " + join(known, ", ") + ")");
   }
-  std::vector<std::pair<std::string, std::string>> given;
+  std::vector<std::pair<std::string, std::string>> given, passed;
   if (colon != std::string_view::npos) {
     for (const std::string& kv : split(text.substr(colon + 1), ",")) {
       const std::size_t eq = kv.find('=');
       if (eq == std::string::npos || eq == 0) {
         throw InputError(where + ": \"" + kv + "\" is not key=value");
       }
-      const std::string key = kv.substr(0, eq);
-      const auto known = std::find_if(info->keys.begin(), info->keys.end(),
-                                      [&](const EngineKey& k) { return k.name == key; });
-      if (known == info->keys.end()) {
-        std::string keys;
-        for (const auto& k : info->keys)
-          keys += (keys.empty() ? "" : ", ") + k.name;
-        throw InputError(where + ": unknown key \"" + key + "\" for " + name + " (keys: " + keys +
-                         ")");
+      const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
+      auto seen = [&](const auto& list) {
+        return std::any_of(list.begin(), list.end(), [&](const auto& g) { return g.first == key; });
+      };
+      if (seen(given) || seen(passed)) throw InputError(where + ": key \"" + key + "\" given twice");
+      const auto declared = std::find_if(def->keys.begin(), def->keys.end(),
+                                         [&](const KeyDef& k) { return k.name == key; });
+      if (declared != def->keys.end()) {
+        given.emplace_back(key, checked_value(where, *declared, value));
+      } else if (def->open_keys) {
+        if (value.empty()) throw InputError(where + ": key \"" + key + "\" has no value");
+        passed.emplace_back(key, value);
+      } else {
+        std::vector<std::string> keys;
+        for (const KeyDef& k : def->keys)
+          keys.push_back(k.name);
+        throw InputError(where + ": unknown key \"" + key + "\" for " + name + " (keys: " +
+                         join(keys, ", ") + ")");
       }
-      if (std::any_of(given.begin(), given.end(), [&](const auto& g) { return g.first == key; })) {
-        throw InputError(where + ": key \"" + key + "\" given twice");
-      }
-      std::string value = kv.substr(eq + 1);
-      if (known->choices.empty()) {
-        value = std::to_string(parse_integer(where + ": " + key, value, known->min, known->max));
-      } else if (std::find(known->choices.begin(), known->choices.end(), value) ==
-                 known->choices.end()) {
-        throw InputError(where + ": " + key + " must be one of " + join_choices(known->choices) +
-                         ", got \"" + value + "\"");
-      }
-      given.emplace_back(key, value);
     }
   }
   EngineSpec spec{name, {}};
-  for (const EngineKey& k : info->keys) {
+  for (const KeyDef& k : def->keys) {
     const auto g =
         std::find_if(given.begin(), given.end(), [&](const auto& p) { return p.first == k.name; });
-    spec.settings.emplace_back(k.name, g != given.end() ? g->second : k.default_value);
-  }
-  if (name == "chain") {  // the velocity rule defaults by variant: each variant's own rule
-    for (auto& [k, v] : spec.settings) {
-      if (k == "velocity" && v.empty())
-        v = spec.get("variant") == "seed2014" ? "zero" : "inelastic";
+    if (g != given.end()) {
+      spec.settings.emplace_back(k.name, g->second);
+    } else if (std::string d = default_of(k, spec.settings); !d.empty()) {
+      spec.settings.emplace_back(k.name, std::move(d));
+    } else {
+      throw InputError(where + ": " + name + " needs " + k.name + "= (" + k.help + ")");
     }
   }
+  std::sort(passed.begin(), passed.end());
+  spec.settings.insert(spec.settings.end(), passed.begin(), passed.end());
   return spec;
+}
+
+std::vector<EngineSpec> parse_grid(std::string_view text) {
+  const std::string where = "--grid \"" + std::string(text) + "\"";
+  const std::size_t colon = text.find(':');
+  const std::string engine(text.substr(0, colon));
+  std::vector<std::pair<std::string, std::vector<std::string>>> axes;
+  if (colon != std::string_view::npos) {
+    for (const std::string& part : split(text.substr(colon + 1), ";")) {
+      const std::size_t eq = part.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == part.size()) {
+        throw InputError(where + ": \"" + part + "\" is not key=value,value,...");
+      }
+      axes.emplace_back(part.substr(0, eq), split(part.substr(eq + 1), ","));
+    }
+  }
+  std::size_t total = 1;
+  for (const auto& [key, values] : axes) {
+    total *= values.size();
+    if (total > 10'000) throw InputError(where + ": more than 10,000 combinations");
+  }
+  std::vector<EngineSpec> out;
+  for (std::size_t k = 0; k < total; ++k) {
+    std::string spec = engine;
+    std::size_t rest = k;
+    for (std::size_t a = 0; a < axes.size(); ++a) {
+      const auto& [key, values] = axes[a];
+      spec += (a == 0 ? ":" : ",") + key + "=" + values[rest % values.size()];
+      rest /= values.size();
+    }
+    out.push_back(parse_engine_spec(spec));  // validates keys and values
+  }
+  return out;
 }
 
 std::vector<EngineSpec> parse_engine_list(std::string_view text) {

@@ -1,6 +1,6 @@
 // Engine specs: "NAME[:key=value,key=value...]", e.g. "chain:variant=seed2014" or
-// "box2d:vel_iters=4,substeps=2". A parsed spec holds every key of its engine, defaults filled
-// in, so its canonical string names exactly what ran.
+// "box2d:vel_iters=4,substeps=2". A parsed spec holds every key its engine declares (registry.h),
+// defaults filled in, so its canonical string names exactly what ran; a spec travels with its run.
 #pragma once
 
 #include <string>
@@ -10,37 +10,28 @@
 
 namespace chainbench {
 
-struct EngineKey {
-  std::string name;
-  std::string default_value;
-  std::vector<std::string> choices;  // empty: a whole number in [min, max]
-  long long min = 0;
-  long long max = 0;
-  std::string help;
-};
-
-struct EngineInfo {
-  std::string name;
-  std::string description;
-  std::vector<EngineKey> keys;
-};
-
-// The engines chainbench can run, with their keys in canonical order.
-const std::vector<EngineInfo>& engine_catalog();
-
 struct EngineSpec {
   std::string engine;
-  std::vector<std::pair<std::string, std::string>> settings;  // every key, canonical order
+  // Every declared key in the engine's order, then the keys an open engine passes on, by name.
+  std::vector<std::pair<std::string, std::string>> settings;
 
-  const std::string& get(std::string_view key) const;
+  const std::string& get(std::string_view key) const;  // std::logic_error for an unknown key
   long long get_int(std::string_view key) const;
-  std::string str() const;  // canonical: "chain:variant=modern,velocity=inelastic,..."
-  // Only the keys that differ from the engine's defaults: "chain:variant=seed2014", "box2d".
-  std::string short_str() const;
+  double get_number(std::string_view key) const;
+  // Canonical: "chain:variant=modern,velocity=inelastic,...".
+  std::string str() const;
+  // The keys that differ from their defaults, as tables print it: "chain:variant=seed2014",
+  // "box2d". Parses back to this very spec.
+  std::string label() const;
+
+  friend bool operator==(const EngineSpec&, const EngineSpec&) = default;
 };
 
 // Throws InputError naming the spec and the unknown engine, key or bad value.
 EngineSpec parse_engine_spec(std::string_view text);
+// "NAME:key=v1,v2;key=v3,v4": every combination of the listed values, the other keys at their
+// defaults. Throws InputError for unknown engines, keys or values, or more than 10,000 specs.
+std::vector<EngineSpec> parse_grid(std::string_view text);
 // A list of specs separated by ',' or ';': "chain,chain:variant=seed2014,velocity=zero,box2d".
 // A token with '=' and no ':' continues the spec before it.
 std::vector<EngineSpec> parse_engine_list(std::string_view text);

@@ -29,12 +29,16 @@ struct SceneBody {
   std::optional<double> restitution;  // else the scene's
 };
 
-// Sets the body's velocity at the start of every step n with from_step <= n < to_step.
+// Holds the body's velocity along the axes it names at the start of every step n with
+// from_step <= n < to_step, as a character controller would; an axis it leaves free is left to
+// gravity and contacts (a walking character holds x and falls along y).
 struct Driver {
   std::size_t body = 0;
   Vec2d velocity;
   int from_step = 0;
   int to_step = std::numeric_limits<int>::max();
+  bool hold_x = true;
+  bool hold_y = true;
 };
 
 // What a scene says is physically right, checked for every engine by the harness. One entry

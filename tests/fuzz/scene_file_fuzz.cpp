@@ -1,7 +1,7 @@
 // Fuzzes the scene-file loader. Any text must either be refused with an InputError or load as
 // a scene that every engine can build and step a few times with finite results.
-#include "engine.h"
 #include "input_error.h"
+#include "registry.h"
 #include "scene_file.h"
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 
 namespace {
@@ -36,7 +37,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
       engine = make_engine(parse_engine_spec(spec), scene);
     } catch (const InputError&) {
-      continue;  // e.g. rotation, which the chaining engines refuse by name
+      continue;  // a scene the engine cannot run (rotation, friction...), refused by name
     }
     for (int step = 0; step < std::min(scene.steps, 10); ++step)
       engine->step(step);

@@ -63,11 +63,13 @@ TEST(ChildProcess, ChildOverItsTimeIsKilledAsAHang) {
 
 TEST(StressVerdicts, DeadChildIsACrashAndFatal) {
   StressVerdict killed;
+  killed.engine = parse_engine_spec("chain");
   killed.signal = SIGSEGV;
   EXPECT_EQ(killed.verdict(), VerdictClass::kCrash);
   EXPECT_EQ(killed.verdict_detail(), "died of signal " + std::to_string(SIGSEGV));
   EXPECT_TRUE(killed.fatal());
   StressVerdict exited;
+  exited.engine = parse_engine_spec("chain");
   exited.exit_status = 1;
   EXPECT_EQ(exited.verdict(), VerdictClass::kCrash);
   EXPECT_EQ(exited.verdict_detail(), "exited with status 1 and no result");

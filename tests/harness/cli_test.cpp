@@ -70,7 +70,7 @@ TEST(Cli, RunWritesTheDesignJsonAndNothingMovesAgainstAWall) {
   }
   ASSERT_EQ(j["comparison"].size(), 2u);
   EXPECT_EQ(j["comparison"][0]["reference"],
-            "box2d:vel_iters=8,pos_iters=3,substeps=1,skin=compensate,warm=1");
+            "box2d:vel_iters=8,pos_iters=3,substeps=1,skin=compensate,warm=1,ccd=0,sleep=0");
   EXPECT_LT(j["comparison"][0]["final_position_error"]["max"].get<double>(), 0.03);
 }
 
@@ -116,7 +116,7 @@ INSTANTIATE_TEST_SUITE_P(
                               "/nonexistent.json: no such file"},
                       BadCall{"run --scene-file /tmp", "/tmp: is a directory, not a scene file"},
                       BadCall{"run --scene stack --engines chain --require box2d",
-                              "--require box2d: not among --engines"},
+                              "--require box2d: not among the engines run (chain)"},
                       BadCall{"run --scene stack --require chain:colour=3", "unknown key"},
                       BadCall{"run --scene stack --json /nonexistent/dir/out.json", "cannot write"},
                       BadCall{"run --scene stack --set n=abc", "\"abc\" is not a number"},

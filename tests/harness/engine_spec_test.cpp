@@ -11,10 +11,10 @@ TEST(EngineSpec, DefaultsAreFilledInCanonicalOrder) {
   EXPECT_EQ(parse_engine_spec("chain").str(),
             "chain:variant=modern,velocity=inelastic,passes=4,budget=64,depth=2048");
   EXPECT_EQ(parse_engine_spec("box2d").str(),
-            "box2d:vel_iters=8,pos_iters=3,substeps=1,skin=compensate,warm=1");
+            "box2d:vel_iters=8,pos_iters=3,substeps=1,skin=compensate,warm=1,ccd=0,sleep=0");
   // Given out of order, printed in canonical order.
   EXPECT_EQ(parse_engine_spec("box2d:substeps=2,vel_iters=4").str(),
-            "box2d:vel_iters=4,pos_iters=3,substeps=2,skin=compensate,warm=1");
+            "box2d:vel_iters=4,pos_iters=3,substeps=2,skin=compensate,warm=1,ccd=0,sleep=0");
 }
 
 TEST(EngineSpec, VelocityRuleDefaultsToEachVariantsOwn) {
@@ -31,13 +31,13 @@ TEST(EngineSpec, ShortFormParsesBackToTheSameSpec) {
         "chain:variant=seed2014,velocity=inelastic", "chain:variant=seed2014,velocity=zero",
         "chain:passes=1,budget=4", "box2d", "box2d:substeps=8,skin=raw"}) {
     const EngineSpec spec = parse_engine_spec(text);
-    EXPECT_EQ(parse_engine_spec(spec.short_str()).str(), spec.str()) << text;
+    EXPECT_EQ(parse_engine_spec(spec.label()).str(), spec.str()) << text;
   }
-  EXPECT_EQ(parse_engine_spec("chain:variant=seed2014,velocity=zero").short_str(),
+  EXPECT_EQ(parse_engine_spec("chain:variant=seed2014,velocity=zero").label(),
             "chain:variant=seed2014");
-  EXPECT_EQ(parse_engine_spec("chain:variant=seed2014,velocity=inelastic").short_str(),
+  EXPECT_EQ(parse_engine_spec("chain:variant=seed2014,velocity=inelastic").label(),
             "chain:variant=seed2014,velocity=inelastic");
-  EXPECT_EQ(parse_engine_spec("chain:variant=modern,velocity=inelastic").short_str(), "chain");
+  EXPECT_EQ(parse_engine_spec("chain:variant=modern,velocity=inelastic").label(), "chain");
 }
 
 TEST(EngineSpec, RefusesUnknownEnginesKeysAndValues) {

@@ -23,14 +23,19 @@ TEST(Runner, BareRunTimesEveryStepButTheFirstAndComputesNoMetric) {
   EXPECT_LE(r.timing.median_ms, r.timing.p95_ms);
 }
 
-TEST(Runner, ChainStatisticsOnlyForTheChainEngine) {
+// Each engine's counters are aggregated as it declares them: per-step means, sums and maxima.
+TEST(Runner, CountersAreAggregatedAsTheirEngineDeclares) {
   const Scene s = make_scene("push_into_wall", {"steps=30"});
   const EngineRun chain_run = run_engine(s, parse_engine_spec("chain"), RunOptions{});
-  ASSERT_TRUE(chain_run.chain.has_value());
-  EXPECT_GT(chain_run.chain->resolve_calls_per_step, 10.0);  // the push reaches the wall each step
-  EXPECT_GE(chain_run.chain->max_depth, 11u);
-  EXPECT_EQ(chain_run.chain->budget_hits, 0u);
-  EXPECT_FALSE(run_engine(s, parse_engine_spec("box2d"), RunOptions{}).chain.has_value());
+  ASSERT_EQ(chain_run.counters.size(), chain_run.counter_defs().size());
+  EXPECT_GT(*chain_run.counter("resolve_calls"), 10.0);  // the push reaches the wall each step
+  EXPECT_GE(*chain_run.counter("max_depth"), 11.0);
+  EXPECT_EQ(*chain_run.counter("budget_hits"), 0.0);
+  EXPECT_EQ(chain_run.degraded_steps, 0u);
+  const EngineRun box2d = run_engine(s, parse_engine_spec("box2d"), RunOptions{});
+  EXPECT_FALSE(box2d.counter("resolve_calls").has_value());
+  // The row of ten touches itself and the wall: 11 contacts after every step.
+  EXPECT_NEAR(*box2d.counter("contacts"), 11.0, 0.5);
 }
 
 TEST(Runner, ExpectationsPassOrFailPerEngine) {

@@ -3,6 +3,7 @@
 // they are.
 #include "stress.h"
 #include "scene_library.h"
+#include "registry.h"
 #include "verdict.h"
 
 #include <gtest/gtest.h>
@@ -24,15 +25,20 @@ TEST(StressMatrix, EveryCaseBuildsItsSceneWithItsRightAnswer) {
   }
 }
 
-// Known failures name real cases in the modern solver, so that none hides a typo.
+// Known failures name real cases of the matrix, so that none hides a typo, and belong to an
+// engine's gate setting.
 TEST(StressMatrix, KnownFailuresNameCasesOfTheMatrix) {
   std::set<std::string> labels;
   for (const StressCase& c : stress_cases())
     labels.insert(c.label());
-  for (const KnownFailure& k : known_failures()) {
-    EXPECT_EQ(labels.count(k.case_label), 1u) << k.case_label;
-    EXPECT_EQ(k.engine, parse_engine_spec("chain").str());
-    EXPECT_FALSE(k.reason.empty());
+  for (const EngineDef& e : engine_registry()) {
+    if (!e.known_failures.empty()) {
+      EXPECT_FALSE(e.gate.empty()) << e.name;
+    }
+    for (const auto& [label, reason] : e.known_failures) {
+      EXPECT_EQ(labels.count(label), 1u) << label;
+      EXPECT_FALSE(reason.empty());
+    }
   }
 }
 

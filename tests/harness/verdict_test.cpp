@@ -75,7 +75,7 @@ TEST(Verdicts, PushTrainBlamesTheReferenceNotTheEngineThatIsRight) {
   report.scene = &s;
   report.runs.push_back(run(s, "chain"));
   report.runs.push_back(run(s, "box2d"));
-  report.reference_spec = parse_engine_spec("box2d").str();
+  report.reference_spec = parse_engine_spec("box2d");
   compare(report);
   const EngineRun& chain = report.runs[0];
   ASSERT_TRUE(chain.expect.has_value());

@@ -1,0 +1,97 @@
+// The engines chainbench can run. Each adapter file registers one engine (its name, keys,
+// capabilities, counters, defaults and factory), and nothing else in the harness names an engine:
+// spec parsing, `chainbench engines`, default engine lists, sweep grids, benchmarks and reports all
+// read this registry. Adding an engine is one adapter file and one CMake line,
+// `chainbench_engine(NAME FILE)` in bench/CMakeLists.txt.
+#pragma once
+
+#include "engine.h"
+#include "engine_spec.h"
+#include "scene.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace chainbench {
+
+// A key of an engine spec, typed and ranged, with its default.
+struct KeyDef {
+  std::string name;
+  std::string default_value;
+  std::vector<std::string> choices;  // empty: a number in [min, max]
+  double min = 0.0;
+  double max = 0.0;
+  bool integer = true;
+  std::string help;
+  // A default that follows another key: while `depends_on` has value `first`, it is `second`.
+  std::string depends_on;
+  std::vector<std::pair<std::string, std::string>> default_when;
+};
+
+// Keys of the three kinds.
+KeyDef choice_key(std::string name, std::string default_value, std::vector<std::string> choices,
+                  std::string help);
+KeyDef whole_key(std::string name, long long default_value, long long min, long long max,
+                 std::string help);
+KeyDef number_key(std::string name, double default_value, double min, double max,
+                  std::string help);
+
+// What an engine can simulate; a scene that needs more is refused by name, not run wrong.
+struct Capabilities {
+  bool rotation = false;     // bodies turn (scene "rotation": true)
+  bool friction = false;     // Coulomb friction between boxes
+  bool restitution = false;  // bounces
+  bool kinematic = false;    // kinematic bodies (moving, infinite mass)
+  bool axis_drives = false;  // a driver that holds one axis and leaves the other free
+};
+
+struct EngineDef {
+  std::string name;
+  std::string description;
+  std::vector<KeyDef> keys;
+  bool open_keys = false;  // keys it does not declare are passed to the engine (plugins)
+  std::function<Capabilities(const EngineSpec&)> capabilities;
+  std::vector<CounterDef> counters;
+  std::string stats_block;            // also writes its counters under this run-JSON key
+  std::vector<std::string> defaults;  // specs run when a command is given no engine list
+  bool reference = false;             // the default reference of `run`
+  std::string accurate;               // a setting finer than any sweep point: a sweep reference
+  std::vector<std::string> sweep;     // default sweep, one knob at a time: "vel_iters=1,2,4"
+  // A setting that must be right: `stress` fails when its verdict on a case is anything but ok or
+  // budget, except on the cases listed as known failures, with their reasons.
+  std::string gate;
+  std::vector<std::pair<std::string, std::string>> known_failures;  // (stress case, reason)
+  // The specs the benchmark program runs, each with the largest scene it is run on (bodies).
+  std::vector<std::pair<std::string, std::size_t>> benchmarks;
+  std::function<std::unique_ptr<Engine>(const EngineSpec&, const Scene&)> make;
+};
+
+// Every registered engine, in the order bench/CMakeLists.txt lists them.
+const std::vector<EngineDef>& engine_registry();
+// The engine named `name`, or InputError naming the known ones.
+const EngineDef& engine_def(std::string_view name);
+
+// Builds the engine `spec` names for `scene`. Throws InputError when the scene needs something
+// the engine cannot do (missing_capability), or when the engine refuses the scene.
+std::unique_ptr<Engine> make_engine(const EngineSpec& spec, const Scene& scene);
+// Why `spec` cannot run `scene` ("it has no friction, and bodies[3] has friction 0.5"), or empty.
+std::string missing_capability(const EngineSpec& spec, const Scene& scene);
+
+// Every engine's default specs, in registry order: what `run`, `stress` and `sweep` use when no
+// list is given.
+std::vector<EngineSpec> default_engines();
+// The default reference of `run`, and the sweep's (a setting finer than any sweep point).
+EngineSpec default_reference();
+EngineSpec accurate_reference();
+// Every engine's default settings and one knob changed at a time (EngineDef::sweep).
+std::vector<EngineSpec> default_sweep_grid();
+// Whether `spec` is some engine's gate (EngineDef::gate), and why it is known to fail a stress
+// case (empty when it is not).
+bool is_gate(const EngineSpec& spec);
+std::string known_failure(const EngineSpec& spec, const std::string& stress_case);
+
+}  // namespace chainbench

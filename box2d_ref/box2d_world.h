@@ -1,8 +1,8 @@
 // The reference: a Box2D 2.4 world built from a Scene and stepped the way the scene says.
 //
 // Fixed rotation unless the scene asks for rotation; continuous collision and sleeping off unless
-// asked for, so every step does comparable work; each body's mass set exactly from the scene. Box2D pads
-// every polygon with a skin of b2_polygonRadius (1 cm) and lets contacts rest about
+// asked for, so every step does comparable work; each body's mass set exactly from the scene. Box2D
+// pads every polygon with a skin of b2_polygonRadius (1 cm) and lets contacts rest about
 // b2_linearSlop (5 mm) deep into it, so boxes built at their declared size rest about 1.5 cm
 // apart. With compensation (the default) each polygon is built kSkinShrink smaller per side
 // and boxes rest where their declared faces meet.

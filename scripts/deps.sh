@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Installs the Debian packages chainbench needs, and only those that are missing.
-#   scripts/deps.sh build   compilers, CMake, Ninja, Box2D, GoogleTest, Google Benchmark, CLI11, JSON,
+#   scripts/deps.sh build   compilers, CMake, Ninja, Box2D, Chipmunk2D, GoogleTest, Google Benchmark,
+#                           CLI11, JSON,
 #                           python3-matplotlib (the plots, and their test)
 #   scripts/deps.sh run     the same
 #   scripts/deps.sh fuzz    build + clang and its libFuzzer runtime
 set -euo pipefail
 
-build=(cmake ninja-build g++ libbox2d-dev libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
-       nlohmann-json3-dev python3 python3-matplotlib)
+build=(cmake ninja-build g++ libbox2d-dev libchipmunk-dev libgtest-dev libgmock-dev libbenchmark-dev
+       libcli11-dev nlohmann-json3-dev python3 python3-matplotlib)
 case "${1:-build}" in
   build) wanted=("${build[@]}") ;;
   run) wanted=("${build[@]}") ;;

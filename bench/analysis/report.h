@@ -25,9 +25,9 @@ struct Comparison {
 struct RunReport {
   const Scene* scene = nullptr;
   std::vector<EngineRun> runs;
-  std::optional<EngineRun> reference;  // the reference run, when it was not one of `runs`
+  std::optional<EngineRun> reference;        // the reference run, when it was not one of `runs`
   std::optional<EngineSpec> reference_spec;  // none: no reference
-  std::vector<Comparison> comparison;  // each run against the reference, in run order
+  std::vector<Comparison> comparison;        // each run against the reference, in run order
 };
 
 // Fills report.comparison from report.runs and the reference.

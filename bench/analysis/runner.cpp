@@ -36,10 +36,6 @@ Timing summarize(std::vector<double>& samples, double setup_ms) {
 
 }  // namespace
 
-const std::vector<CounterDef>& EngineRun::counter_defs() const {
-  return engine_def(spec.engine).counters;
-}
-
 std::optional<double> EngineRun::counter(std::string_view name) const {
   const std::vector<CounterDef>& defs = counter_defs();
   for (std::size_t i = 0; i < defs.size() && i < counters.size(); ++i) {
@@ -97,7 +93,9 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
       expect.observe(0, before, nullptr, expect.needs_depth(0) ? &deepest : nullptr);
     }
   }
-  const std::vector<CounterDef>& counter_defs = run.counter_defs();
+  const std::span<const CounterDef> engine_counters = engine->counter_defs();
+  run.defs.assign(engine_counters.begin(), engine_counters.end());
+  const std::vector<CounterDef>& counter_defs = run.defs;
   std::vector<double> totals(counter_defs.size(), 0.0);
   int steps_taken = 0;
 
@@ -155,8 +153,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     run.metrics_computed = true;
   }
   for (std::size_t c = 0; c < totals.size(); ++c) {
-    if (counter_defs[c].aggregate == Aggregate::kMean)
-      totals[c] /= std::max(1, steps_taken);
+    if (counter_defs[c].aggregate == Aggregate::kMean) totals[c] /= std::max(1, steps_taken);
   }
   run.counters = std::move(totals);
   if (!expect.empty()) run.expect = expect.result();

@@ -6,9 +6,9 @@
 
 #include "engine.h"
 #include "engine_spec.h"
-#include "registry.h"
 #include "expectations.h"
 #include "metrics.h"
+#include "registry.h"
 #include "scene.h"
 #include "verdict.h"
 
@@ -55,7 +55,9 @@ struct EngineRun {
   std::optional<bool> stable() const;
   // The run's value of the counter `name`, or empty when its engine has no such counter.
   std::optional<double> counter(std::string_view name) const;
-  const std::vector<CounterDef>& counter_defs() const;
+  const std::vector<CounterDef>& counter_defs() const { return defs; }
+
+  std::vector<CounterDef> defs;  // what the engine counts, in the order of `counters`
 };
 
 // Receives one row per body per step: the trace CSV of `chainbench run --trace`.

@@ -20,6 +20,8 @@ constexpr std::size_t kMaxCounters = 16;
 struct Summary {
   double max_penetration, peak_speed, speed_bound, ms_per_step;
   double counters[kMaxCounters];
+  char counter_names[kMaxCounters][32];
+  char counter_columns[kMaxCounters][16];
   std::uint64_t degraded_steps;
   std::uint32_t counter_count;
   std::uint8_t finite, in_bounds, blow_up, tunnelled, expect_pass, judged;
@@ -42,7 +44,12 @@ Summary summarize_case(const StressCase& c, const EngineSpec& engine) {
     s.expect_pass = !run.expect || run.expect->pass;
     s.degraded_steps = run.degraded_steps;
     s.counter_count = static_cast<std::uint32_t>(std::min(run.counters.size(), kMaxCounters));
-    std::copy_n(run.counters.begin(), s.counter_count, s.counters);
+    for (std::size_t k = 0; k < s.counter_count; ++k) {
+      s.counters[k] = run.counters[k];
+      std::snprintf(s.counter_names[k], sizeof s.counter_names[k], "%s", run.defs[k].name.c_str());
+      std::snprintf(s.counter_columns[k], sizeof s.counter_columns[k], "%s",
+                    run.defs[k].column.c_str());
+    }
     s.judged = static_cast<std::uint8_t>(run.verdict->worst);
     if (!run.verdict->findings.empty())
       std::snprintf(s.detail, sizeof s.detail, "%s", run.verdict->findings.front().detail.c_str());
@@ -168,7 +175,8 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
   v.finite = s.finite, v.in_bounds = s.in_bounds, v.blow_up = s.blow_up;
   v.tunnelled = s.tunnelled, v.expect_pass = s.expect_pass;
   v.degraded_steps = s.degraded_steps;
-  v.counters.assign(s.counters, s.counters + s.counter_count);
+  for (std::uint32_t k = 0; k < s.counter_count && k < kMaxCounters; ++k)
+    v.counters.push_back({s.counter_names[k], s.counter_columns[k], s.counters[k]});
   return v;
 }
 
@@ -176,15 +184,14 @@ void print_stress_table(std::ostream& out, const std::vector<StressVerdict>& ver
   // The counters some engine gives a table column (registry.h), in the order they first appear.
   std::vector<std::string> columns;
   for (const StressVerdict& v : verdicts) {
-    for (const CounterDef& c : engine_def(v.engine.engine).counters) {
+    for (const StressVerdict::Counter& c : v.counters) {
       if (!c.column.empty() && std::find(columns.begin(), columns.end(), c.column) == columns.end())
         columns.push_back(c.column);
     }
   }
   auto counter_cell = [&](const StressVerdict& v, const std::string& title) {
-    const std::vector<CounterDef>& defs = engine_def(v.engine.engine).counters;
-    for (std::size_t c = 0; c < defs.size() && c < v.counters.size(); ++c) {
-      if (defs[c].column == title) return fmt_g(v.counters[c]);
+    for (const StressVerdict::Counter& c : v.counters) {
+      if (c.column == title) return fmt_g(c.value);
     }
     return std::string("-");
   };
@@ -250,9 +257,8 @@ nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, b
       c["expect_pass"] = v.expect_pass;
       c["degraded_steps"] = v.degraded_steps;
       nlohmann::ordered_json counters = nlohmann::ordered_json::object();
-      const std::vector<CounterDef>& defs = engine_def(v.engine.engine).counters;
-      for (std::size_t k = 0; k < defs.size() && k < v.counters.size(); ++k)
-        counters[defs[k].name] = json_number(v.counters[k]);
+      for (const StressVerdict::Counter& c : v.counters)
+        counters[c.name] = json_number(c.value);
       // The first stress JSON's two counters keep their keys: null for an engine without them.
       for (const char* legacy : {"budget_hits", "crush_events"})
         c[legacy] = counters.contains(legacy) ? counters[legacy] : nlohmann::ordered_json(nullptr);

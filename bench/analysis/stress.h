@@ -39,7 +39,11 @@ struct StressVerdict {
   std::string detail;                       // what it rests on
   bool finite = true, in_bounds = true, blow_up = false, tunnelled = false, expect_pass = true;
   std::uint64_t degraded_steps = 0;
-  std::vector<double> counters;  // the engine's counters over the run (registry.h)
+  struct Counter {
+    std::string name, column;
+    double value;
+  };
+  std::vector<Counter> counters;  // the engine's counters over the run (engine.h)
   double max_penetration = 0.0, peak_speed = 0.0, speed_bound = 0.0;
   double ms_per_step = 0.0, wall_s = 0.0;
   std::string known_failure;  // the reason, when this case and engine are a known failure

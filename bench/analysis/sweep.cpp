@@ -98,18 +98,16 @@ void mark_pareto(std::vector<SweepPoint>& points) {
 void print_sweep_table(std::ostream& out, const SweepResult& r) {
   out << "scene " << r.scene << ": " << r.bodies << " bodies, " << r.steps
       << " steps; error against "
-      << (r.reference == "expect" ? "the scene's expectations"
-                                  : r.reference_label)
+      << (r.reference == "expect" ? "the scene's expectations" : r.reference_label)
       << (r.interrupted ? " (interrupted: the points measured so far)" : "") << "\n\n";
   TextTable t({"engine", "ms/step", "+- ms", "err max m", "err rms m", "EFD/body-step m",
                "max pen m", "stable", "verdict", "pareto"});
   auto opt = [](const std::optional<double>& v) { return v ? fmt_g(*v) : std::string("-"); };
   for (const SweepPoint& p : r.points) {
     const auto stable = p.run.stable();
-    t.add({p.run.spec.label(), fmt_ms(p.run.timing.median_ms),
-           fmt_ms(p.run.timing.spread_ms), fmt_g(p.error.max), fmt_g(p.error.rms),
-           opt(p.run.metrics.efd_per_body_step), opt(p.run.metrics.max_penetration),
-           stable ? (*stable ? "yes" : "NO") : "-",
+    t.add({p.run.spec.label(), fmt_ms(p.run.timing.median_ms), fmt_ms(p.run.timing.spread_ms),
+           fmt_g(p.error.max), fmt_g(p.error.rms), opt(p.run.metrics.efd_per_body_step),
+           opt(p.run.metrics.max_penetration), stable ? (*stable ? "yes" : "NO") : "-",
            p.run.verdict ? to_string(p.run.verdict->worst) : "-", p.pareto ? "*" : ""});
   }
   t.print(out);
@@ -124,8 +122,7 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
     ordered_json s;
     s["scene"] = {{"name", r.scene}, {"bodies", r.bodies}, {"steps", r.steps}};
     s["reference"] = r.reference;
-    s["reference_label"] =
-        r.reference == "expect" ? r.reference : r.reference_label;
+    s["reference_label"] = r.reference == "expect" ? r.reference : r.reference_label;
     if (r.reference_run) s["reference_ms_per_step"] = r.reference_run->timing.median_ms;
     s["interrupted"] = r.interrupted;
     s["points"] = ordered_json::array();

@@ -7,8 +7,8 @@
 // engine declares (registry.h), contacts among them.
 #include "engine.h"
 #include "engine_spec.h"
-#include "registry.h"
 #include "metrics.h"
+#include "registry.h"
 #include "scene_library.h"
 
 #include <benchmark/benchmark.h>
@@ -52,7 +52,7 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
   state.counters["degraded"] = degraded / iterations;
   // The engine's own counters, gathered over a few more steps outside the timing (some engines
   // count by walking their contacts).
-  const std::vector<CounterDef>& defs = engine_def(spec.engine).counters;
+  const std::span<const CounterDef> defs = engine->counter_defs();
   std::vector<double> totals(defs.size(), 0.0);
   constexpr int kCounted = 16;
   for (int k = 0; k < kCounted; ++k) {
@@ -68,8 +68,8 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
   state.SetComplexityN(static_cast<benchmark::IterationCount>(bodies));
 }
 
-// What the harness adds: the first default engine on pyramid base=100, stepped bare (0), or stepped with
-// the state read back and every metric of `chainbench run` computed after each step (1).
+// What the harness adds: the first default engine on pyramid base=100, stepped bare (0), or stepped
+// with the state read back and every metric of `chainbench run` computed after each step (1).
 void harness_benchmark(benchmark::State& state, const EngineSpec& spec) {
   const Scene scene = make_scene("pyramid", {"base=100", "steps=10000000"});
   const auto engine = make_engine(spec, scene);

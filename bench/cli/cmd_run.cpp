@@ -137,9 +137,9 @@ void add_run_command(CLI::App& app, int* status) {
   run_app->add_option("--engines", args->engines,
                       "engine specs, comma separated (chainbench engines); default: " +
                           default_engine_list() + ", those that can run the scene");
-  run_app->add_option("--reference", args->reference,
-                      "engine the others are compared with, or none; default: " +
-                          default_reference().label());
+  run_app->add_option(
+      "--reference", args->reference,
+      "engine the others are compared with, or none; default: " + default_reference().label());
   run_app->add_option("--steps", args->steps, "steps to run instead of the scene's")
       ->check(CLI::Range(1, 10'000'000));
   run_app->add_option("--json", args->json, "write the chainbench.run/1 JSON here");

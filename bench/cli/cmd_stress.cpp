@@ -2,9 +2,9 @@
 #include "commands.h"
 #include "engine_choice.h"
 #include "input_error.h"
-#include "registry.h"
 #include "output_file.h"
 #include "progress.h"
+#include "registry.h"
 #include "stress.h"
 
 #include <algorithm>

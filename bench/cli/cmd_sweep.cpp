@@ -1,9 +1,9 @@
 // chainbench sweep: error against run time over a grid of engine settings.
 #include "commands.h"
-#include "registry.h"
 #include "input_error.h"
 #include "output_file.h"
 #include "progress.h"
+#include "registry.h"
 #include "scene_file.h"
 #include "scene_library.h"
 #include "sweep.h"
@@ -121,11 +121,11 @@ void add_sweep_command(CLI::App& app, int* status) {
   sweep_app->add_option("--grid", args->grids,
                         "NAME:key=v1,v2;key=v3,... every combination (repeatable); "
                         "default: one setting at a time around each engine's defaults");
-  sweep_app
-      ->add_option("--reference", args->reference,
-                   "engine the points are measured against, unless the scene has expectations; "
-                   "default: " +
-                       accurate_reference().label());
+  sweep_app->add_option(
+      "--reference", args->reference,
+      "engine the points are measured against, unless the scene has expectations; "
+      "default: " +
+          accurate_reference().label());
   sweep_app->add_option("--steps", args->steps, "steps to run instead of each scene's")
       ->check(CLI::Range(1, 10'000'000));
   sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here");

@@ -5,6 +5,12 @@
 namespace chainbench {
 namespace {
 
+const std::vector<CounterDef>& counter_list() {
+  static const std::vector<CounterDef> list = {
+      {"contacts", Aggregate::kMean, "touching contacts after each step", ""}};
+  return list;
+}
+
 Box2dSettings settings(const EngineSpec& spec) {
   Box2dSettings s;
   s.velocity_iterations = static_cast<int>(spec.get_int("vel_iters"));
@@ -25,6 +31,7 @@ class Box2dEngine final : public Engine {
     world_.read_state(out.position, out.velocity, out.angle);
   }
   // Counted here, outside the timed step.
+  std::span<const CounterDef> counter_defs() const override { return counter_list(); }
   std::span<const double> counters() const override {
     contacts_ = static_cast<double>(world_.touching_contacts());
     return {&contacts_, 1};
@@ -50,10 +57,8 @@ EngineDef register_box2d() {
             whole_key("warm", 1, 0, 1, "warm starting"),
             whole_key("ccd", 0, 0, 1, "continuous collision, every dynamic body a bullet"),
             whole_key("sleep", 0, 0, 1, "bodies at rest fall asleep, as games ship it")};
-  e.capabilities = [](const EngineSpec&) {
-    return Capabilities{true, true, true, true, true};
-  };
-  e.counters = {{"contacts", Aggregate::kMean, "touching contacts after each step", ""}};
+  e.capabilities = [](const EngineSpec&) { return Capabilities{true, true, true, true, true}; };
+  e.counters = counter_list();
   e.defaults = {"box2d"};
   e.reference = true;
   e.accurate = "box2d:vel_iters=20,pos_iters=10,substeps=8";

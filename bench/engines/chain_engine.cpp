@@ -34,8 +34,17 @@ chain::WorldDef world_def(const EngineSpec& spec, const Scene& scene) {
   return def;
 }
 
-// In the order of the counters register_chain() declares.
 enum Counter { kPasses, kContacts, kResolveCalls, kMaxDepth, kBudgetHits, kCrushEvents, kCount };
+const std::vector<CounterDef>& counter_list() {
+  static const std::vector<CounterDef> list = {
+      {"passes", Aggregate::kMean, "contact sweeps per step", ""},
+      {"contacts", Aggregate::kMean, "overlapping pairs found per step, all sweeps", ""},
+      {"resolve_calls", Aggregate::kMean, "pair resolutions per step, chained ones included", ""},
+      {"max_depth", Aggregate::kMax, "longest chain of nested resolutions", ""},
+      {"budget_hits", Aggregate::kSum, "chains cut short by the work budget", "budget"},
+      {"crush_events", Aggregate::kSum, "bodies squeezed between two immovable ones", "crushes"}};
+  return list;
+}
 
 class ChainEngine final : public Engine {
  public:
@@ -75,9 +84,10 @@ class ChainEngine final : public Engine {
     }
   }
 
+  std::span<const CounterDef> counter_defs() const override { return counter_list(); }
   std::span<const double> counters() const override {
     const chain::StepStats& s = world_.last_step_stats();
-    counters_ = {static_cast<double>(s.passes),     static_cast<double>(s.contacts),
+    counters_ = {static_cast<double>(s.passes),        static_cast<double>(s.contacts),
                  static_cast<double>(s.resolve_calls), static_cast<double>(s.max_depth),
                  static_cast<double>(s.budget_hits),   static_cast<double>(s.crush_events)};
     return counters_;
@@ -107,8 +117,7 @@ EngineDef register_chain() {
   velocity.default_when = {{"seed2014", "zero"}};
   e.keys = {choice_key("variant", "modern", {"modern", "seed2014"},
                        "modern: chaining done right; seed2014: the 2014 engine, quirks included"),
-            velocity,
-            whole_key("passes", 4, 1, 1000, "modern: contact sweeps per step, at most"),
+            velocity, whole_key("passes", 4, 1, 1000, "modern: contact sweeps per step, at most"),
             whole_key("budget", 64, 1, 1000000, "pair resolutions per body per step (+1024)"),
             whole_key("depth", 2048, 1, 16384, "seed2014: recursion depth limit")};
   e.capabilities = [](const EngineSpec& spec) {
@@ -117,30 +126,24 @@ EngineDef register_chain() {
     c.restitution = spec.get("velocity") == "inelastic";  // the zero rule stops, never bounces
     return c;
   };
-  e.counters = {
-      {"passes", Aggregate::kMean, "contact sweeps per step", ""},
-      {"contacts", Aggregate::kMean, "overlapping pairs found per step, all sweeps", ""},
-      {"resolve_calls", Aggregate::kMean, "pair resolutions per step, chained ones included", ""},
-      {"max_depth", Aggregate::kMax, "longest chain of nested resolutions", ""},
-      {"budget_hits", Aggregate::kSum, "chains cut short by the work budget", "budget"},
-      {"crush_events", Aggregate::kSum, "bodies squeezed between two immovable ones", "crushes"}};
+  e.counters = counter_list();
   e.stats_block = "chain_stats";
   e.defaults = {"chain", "chain:variant=seed2014"};
-  e.sweep = {"velocity=zero",  "variant=seed2014", "variant=seed2014;velocity=inelastic",
+  e.sweep = {"velocity=zero", "variant=seed2014", "variant=seed2014;velocity=inelastic",
              "passes=1,2", "budget=4,16"};
   e.benchmarks = {{"chain", 2'000'000}, {"chain:variant=seed2014", 150'000}};
   // The modern solver is the one under test: stress fails where it is not right.
   e.gate = "chain";
-  const char* through = "push-out moves bodies through others within a step (no continuous "
-                        "collision yet)";
-  const char* squeeze = "a crushed row takes its whole squeeze at one end, whose boxes then pass "
-                        "each other";
-  e.known_failures = {{"projectile speed=500", through},
-                      {"overlap_recovery overlap=0.5", through},
-                      {"overlapping_pile n=1000", through},
-                      {"overlapping_pile n=200", through},
-                      {"converging_walls n=10", squeeze},
-                      {"converging_walls n=1000", squeeze}};
+  const char* through =
+      "push-out moves bodies through others within a step (no continuous "
+      "collision yet)";
+  const char* squeeze =
+      "a crushed row takes its whole squeeze at one end, whose boxes then pass "
+      "each other";
+  e.known_failures = {
+      {"projectile speed=500", through},    {"overlap_recovery overlap=0.5", through},
+      {"overlapping_pile n=1000", through}, {"overlapping_pile n=200", through},
+      {"converging_walls n=10", squeeze},   {"converging_walls n=1000", squeeze}};
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
     return std::make_unique<ChainEngine>(spec, scene);
   };

@@ -43,7 +43,8 @@ class Engine {
   // scene step.
   virtual void step(int step_index) = 0;
   virtual void read_state(BodyState& out) const = 0;
-  // The last step's counters, in the order of the engine's CounterDefs; empty if it has none.
+  // What the engine counts about each step, and the last step's values in that order.
+  virtual std::span<const CounterDef> counter_defs() const { return {}; }
   virtual std::span<const double> counters() const { return {}; }
   // Whether the engine cut the last step short to bound its work: the run is then `budget`.
   virtual bool degraded() const { return false; }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <filesystem>
 #include <stdexcept>
 
 namespace chainbench {
@@ -54,6 +55,12 @@ std::string default_of(const KeyDef& key,
 
 // The value as the canonical string has it, or InputError.
 std::string checked_value(const std::string& where, const KeyDef& key, const std::string& value) {
+  if (key.file) {
+    if (value.empty()) throw InputError(where + ": " + key.name + " is empty");
+    std::error_code ec;
+    const std::filesystem::path absolute = std::filesystem::absolute(value, ec);
+    return ec ? value : absolute.lexically_normal().string();
+  }
   if (!key.choices.empty()) {
     if (std::find(key.choices.begin(), key.choices.end(), value) == key.choices.end()) {
       throw InputError(where + ": " + key.name + " must be one of " + join(key.choices, "|") +
@@ -105,9 +112,12 @@ std::string EngineSpec::label() const {
   for (const auto& [key, value] : settings) {
     const auto declared = std::find_if(def.keys.begin(), def.keys.end(),
                                        [&](const KeyDef& k) { return k.name == key; });
-    // A passed-on key is always shown; a declared one when it differs from its default here.
+    // A passed-on key is always shown; a declared one when it differs from its default here, a
+    // file by its name alone.
     if (declared != def.keys.end() && value == default_of(*declared, settings)) continue;
-    s += (first ? ":" : ",") + key + "=" + value;
+    const bool file = declared != def.keys.end() && declared->file;
+    s += (first ? ":" : ",") + key + "=" +
+         (file ? std::filesystem::path(value).filename().string() : value);
     first = false;
   }
   return s;
@@ -124,7 +134,8 @@ EngineSpec parse_engine_spec(std::string_view text) {
     std::vector<std::string> known;
     for (const EngineDef& e : registry)
       known.push_back(e.name);
-    throw InputError(where + ": unknown engine \"" + name + "\" (known: " + join(known, ", ") + ")");
+    throw InputError(where + ": unknown engine \"" + name + "\" (known: " + join(known, ", ") +
+                     ")");
   }
   std::vector<std::pair<std::string, std::string>> given, passed;
   if (colon != std::string_view::npos) {
@@ -137,7 +148,8 @@ EngineSpec parse_engine_spec(std::string_view text) {
       auto seen = [&](const auto& list) {
         return std::any_of(list.begin(), list.end(), [&](const auto& g) { return g.first == key; });
       };
-      if (seen(given) || seen(passed)) throw InputError(where + ": key \"" + key + "\" given twice");
+      if (seen(given) || seen(passed))
+        throw InputError(where + ": key \"" + key + "\" given twice");
       const auto declared = std::find_if(def->keys.begin(), def->keys.end(),
                                          [&](const KeyDef& k) { return k.name == key; });
       if (declared != def->keys.end()) {
@@ -149,8 +161,8 @@ EngineSpec parse_engine_spec(std::string_view text) {
         std::vector<std::string> keys;
         for (const KeyDef& k : def->keys)
           keys.push_back(k.name);
-        throw InputError(where + ": unknown key \"" + key + "\" for " + name + " (keys: " +
-                         join(keys, ", ") + ")");
+        throw InputError(where + ": unknown key \"" + key + "\" for " + name +
+                         " (keys: " + join(keys, ", ") + ")");
       }
     }
   }

@@ -21,7 +21,7 @@ struct EngineSpec {
   // Canonical: "chain:variant=modern,velocity=inelastic,...".
   std::string str() const;
   // The keys that differ from their defaults, as tables print it: "chain:variant=seed2014",
-  // "box2d". Parses back to this very spec.
+  // "box2d". Parses back to this very spec, except that a file key shows the file's name only.
   std::string label() const;
 
   friend bool operator==(const EngineSpec&, const EngineSpec&) = default;

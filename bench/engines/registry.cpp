@@ -47,6 +47,14 @@ KeyDef number_key(std::string name, double default_value, double min, double max
   return k;
 }
 
+KeyDef file_key(std::string name, std::string help) {
+  KeyDef k;
+  k.name = std::move(name);
+  k.file = true;
+  k.help = std::move(help);
+  return k;
+}
+
 const std::vector<EngineDef>& engine_registry() {
   static const std::vector<EngineDef> registry = {
 #define CHAINBENCH_ENGINE(name) register_##name(),
@@ -72,7 +80,8 @@ const EngineDef& engine_def(std::string_view name) {
 std::string missing_capability(const EngineSpec& spec, const Scene& scene) {
   const Capabilities can = engine_def(spec.engine).capabilities(spec);
   const std::string who = spec.label();
-  if (scene.rotation && !can.rotation) return who + " cannot turn bodies, and the scene rotates them";
+  if (scene.rotation && !can.rotation)
+    return who + " cannot turn bodies, and the scene rotates them";
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     const SceneBody& b = scene.bodies[i];
     const std::string at = "bodies[" + std::to_string(i) + "] (" + b.name + ")";

@@ -22,10 +22,11 @@ namespace chainbench {
 struct KeyDef {
   std::string name;
   std::string default_value;
-  std::vector<std::string> choices;  // empty: a number in [min, max]
+  std::vector<std::string> choices;  // empty: a number in [min, max], or a file
   double min = 0.0;
   double max = 0.0;
   bool integer = true;
+  bool file = false;  // a path to a file, kept as an absolute path; no default: required
   std::string help;
   // A default that follows another key: while `depends_on` has value `first`, it is `second`.
   std::string depends_on;
@@ -37,8 +38,8 @@ KeyDef choice_key(std::string name, std::string default_value, std::vector<std::
                   std::string help);
 KeyDef whole_key(std::string name, long long default_value, long long min, long long max,
                  std::string help);
-KeyDef number_key(std::string name, double default_value, double min, double max,
-                  std::string help);
+KeyDef number_key(std::string name, double default_value, double min, double max, std::string help);
+KeyDef file_key(std::string name, std::string help);
 
 // What an engine can simulate; a scene that needs more is refused by name, not run wrong.
 struct Capabilities {
@@ -55,7 +56,7 @@ struct EngineDef {
   std::vector<KeyDef> keys;
   bool open_keys = false;  // keys it does not declare are passed to the engine (plugins)
   std::function<Capabilities(const EngineSpec&)> capabilities;
-  std::vector<CounterDef> counters;
+  std::vector<CounterDef> counters;   // what its engines count (a plugin's, once loaded)
   std::string stats_block;            // also writes its counters under this run-JSON key
   std::vector<std::string> defaults;  // specs run when a command is given no engine list
   bool reference = false;             // the default reference of `run`

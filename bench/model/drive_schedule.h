@@ -29,10 +29,10 @@ class DriveSchedule {
 
  private:
   std::vector<Driver> drivers_;
-  std::vector<std::size_t> bodies_;          // the driven bodies, each once
-  std::vector<std::uint32_t> local_;         // per driver: its body's index in bodies_
-  std::vector<std::int32_t> slot_;           // per driven body: its place in active_, or -1
-  std::vector<std::uint8_t> was_;            // per driven body: held at the step before
+  std::vector<std::size_t> bodies_;   // the driven bodies, each once
+  std::vector<std::uint32_t> local_;  // per driver: its body's index in bodies_
+  std::vector<std::int32_t> slot_;    // per driven body: its place in active_, or -1
+  std::vector<std::uint8_t> was_;     // per driven body: held at the step before
   std::vector<Drive> active_;
   std::vector<std::uint32_t> active_local_;  // per entry of active_: its body's index in bodies_
   std::vector<std::size_t> released_;

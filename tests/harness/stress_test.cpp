@@ -2,8 +2,8 @@
 // there, and the child-process verdicts see wrong results, tunnelling, errors and hangs for what
 // they are.
 #include "stress.h"
-#include "scene_library.h"
 #include "registry.h"
+#include "scene_library.h"
 #include "verdict.h"
 
 #include <gtest/gtest.h>

@@ -1,0 +1,242 @@
+// A user's own resolver, loaded from a shared library through the C ABI of
+// bench/include/chainbench/engine_plugin.h: `plugin:path=FILE[,key=value...]`.
+//
+// What a plugin returns is checked as it comes: a library that cannot be loaded, has no entry
+// point, was built for another ABI or gives an incomplete table, a world it cannot build, a step
+// that fails, a state of the wrong size or with a non-finite number, each stops the run with a
+// message naming the plugin (InputError: exit status 2, or an `error` verdict in stress).
+#include "drive_schedule.h"
+#include "input_error.h"
+#include "registry.h"
+
+#include <chainbench/engine_plugin.h>
+
+#include <dlfcn.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+
+namespace chainbench {
+namespace {
+
+constexpr std::size_t kMaxCounters = 16;
+
+// A loaded library. Never unloaded: its function pointers must outlive every world made from it.
+struct Plugin {
+  std::string path;
+  std::string name;
+  const cb_engine* api = nullptr;
+  std::vector<CounterDef> counters;
+};
+
+std::string describe(const Plugin& p) {
+  return "plugin " + p.name + " (" + p.path + ")";
+}
+
+bool valid_counter_name(const char* name) {
+  if (!name || !*name) return false;
+  for (const char* c = name; *c; ++c) {
+    if (!((*c >= 'a' && *c <= 'z') || (*c >= '0' && *c <= '9') || *c == '_')) return false;
+  }
+  return std::string(name).size() < 32;
+}
+
+Plugin open_plugin(const std::string& path) {
+  const std::string where = "plugin " + path;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(where + ": no such file");
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(where + ": is a directory, not a shared library");
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) throw InputError(where + ": cannot load it: " + std::string(dlerror()));
+  const auto entry = reinterpret_cast<cb_entry_fn>(dlsym(handle, CHAINBENCH_PLUGIN_ENTRY));
+  if (!entry) {
+    throw InputError(where + ": exports no " + std::string(CHAINBENCH_PLUGIN_ENTRY) +
+                     "() (is it a chainbench plugin? see chainbench/engine_plugin.h)");
+  }
+  Plugin p;
+  p.path = path;
+  p.api = entry();
+  if (!p.api) throw InputError(where + ": " + CHAINBENCH_PLUGIN_ENTRY + "() returned null");
+  if (p.api->abi != CHAINBENCH_PLUGIN_ABI) {
+    throw InputError(where + ": built for plugin ABI " + std::to_string(p.api->abi) +
+                     ", this chainbench loads ABI " + std::to_string(CHAINBENCH_PLUGIN_ABI) +
+                     ": rebuild it against this chainbench's engine_plugin.h");
+  }
+  if (p.api->size != sizeof(cb_engine)) {
+    throw InputError(where + ": its cb_engine is " + std::to_string(p.api->size) +
+                     " bytes, this chainbench's is " + std::to_string(sizeof(cb_engine)));
+  }
+  p.name = p.api->name && *p.api->name ? p.api->name : "(unnamed)";
+  if (!p.api->create || !p.api->set_velocity || !p.api->step || !p.api->read_state ||
+      !p.api->destroy || (p.api->counter_count > 0 && !p.api->read_counters)) {
+    throw InputError(describe(p) + ": its cb_engine leaves a required function null");
+  }
+  if (p.api->counter_count > kMaxCounters) {
+    throw InputError(describe(p) + ": reports " + std::to_string(p.api->counter_count) +
+                     " counters, more than " + std::to_string(kMaxCounters));
+  }
+  for (std::uint32_t k = 0; k < p.api->counter_count; ++k) {
+    const char* name = p.api->counter_names ? p.api->counter_names[k] : nullptr;
+    if (!valid_counter_name(name)) {
+      throw InputError(describe(p) + ": counter " + std::to_string(k) +
+                       " has no valid name (letters a-z, digits and _, under 32)");
+    }
+    p.counters.push_back({name, Aggregate::kMean, "reported by the plugin", ""});
+  }
+  return p;
+}
+
+// Loads each library once.
+const Plugin& load_plugin(const std::string& path) {
+  static std::mutex mutex;
+  static std::map<std::string, std::unique_ptr<Plugin>> loaded;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = loaded[path];
+  if (!slot) slot = std::make_unique<Plugin>(open_plugin(path));
+  return *slot;
+}
+
+cb_body to_plugin(const Scene& scene, const SceneBody& b) {
+  cb_body out{};
+  out.kind = b.kind == BodyKind::kStatic      ? CB_STATIC
+             : b.kind == BodyKind::kKinematic ? CB_KINEMATIC
+                                              : CB_DYNAMIC;
+  out.center[0] = b.center.x, out.center[1] = b.center.y;
+  out.half_extents[0] = b.half_extents.x, out.half_extents[1] = b.half_extents.y;
+  out.mass = b.kind == BodyKind::kDynamic ? b.mass : 0.0;
+  out.velocity[0] = b.kind == BodyKind::kStatic ? 0.0 : b.velocity.x;
+  out.velocity[1] = b.kind == BodyKind::kStatic ? 0.0 : b.velocity.y;
+  out.gravity_scale = b.gravity_scale;
+  out.friction = scene.friction_of(b);
+  out.restitution = scene.restitution_of(b);
+  return out;
+}
+
+class PluginEngine final : public Engine {
+ public:
+  PluginEngine(const EngineSpec& spec, const Scene& scene)
+      : plugin_(load_plugin(spec.get("path"))),
+        drives_(scene),
+        names_(scene.bodies.size()),
+        positions_(2 * scene.bodies.size()),
+        velocities_(2 * scene.bodies.size()),
+        counters_(plugin_.counters.size()) {
+    std::vector<cb_body> bodies;
+    bodies.reserve(scene.bodies.size());
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      bodies.push_back(to_plugin(scene, scene.bodies[i]));
+      names_[i] = scene.bodies[i].name;
+    }
+    std::vector<cb_setting> settings;
+    for (const auto& [key, value] : spec.settings) {
+      if (key != "path") settings.push_back({key.c_str(), value.c_str()});
+    }
+    cb_world_desc desc{};
+    desc.abi = CHAINBENCH_PLUGIN_ABI;
+    desc.body_count = static_cast<std::uint32_t>(bodies.size());
+    desc.gravity[0] = scene.gravity.x, desc.gravity[1] = scene.gravity.y;
+    desc.dt = scene.dt;
+    desc.rotation = scene.rotation ? 1 : 0;
+    desc.bodies = bodies.data();
+    desc.setting_count = static_cast<std::uint32_t>(settings.size());
+    desc.settings = settings.data();
+    char error[512] = "";
+    world_ = plugin_.api->create(&desc, error, sizeof error);
+    if (!world_) {
+      throw InputError(describe(plugin_) + ": could not build scene " + scene.name + ": " +
+                       (error[0] ? std::string(error) : "it gave no reason"));
+    }
+  }
+
+  ~PluginEngine() override { plugin_.api->destroy(world_); }
+  PluginEngine(const PluginEngine&) = delete;
+  PluginEngine& operator=(const PluginEngine&) = delete;
+
+  void step(int step_index) override {
+    drives_.advance(step_index);
+    for (const Drive& d : drives_.active()) {
+      const std::uint32_t axes =
+          (d.hold_x ? std::uint32_t{CB_AXIS_X} : 0u) | (d.hold_y ? std::uint32_t{CB_AXIS_Y} : 0u);
+      if (plugin_.api->set_velocity(world_, static_cast<std::uint32_t>(d.body), d.velocity.x,
+                                    d.velocity.y, axes) != 0) {
+        throw InputError(describe(plugin_) + ": refused to set the velocity of body " +
+                         names_[d.body] + " at step " + std::to_string(step_index));
+      }
+    }
+    char error[512] = "";
+    const int rc = plugin_.api->step(world_, error, sizeof error);
+    if (rc < 0) {
+      throw InputError(describe(plugin_) + ": step " + std::to_string(step_index) +
+                       " failed: " + (error[0] ? std::string(error) : "it gave no reason"));
+    }
+    degraded_ = rc == 1;
+  }
+
+  void read_state(BodyState& out) const override {
+    const auto n = static_cast<std::uint32_t>(names_.size());
+    const std::uint32_t held =
+        plugin_.api->read_state(world_, positions_.data(), velocities_.data(), out.angle.data(), n);
+    if (held != n) {
+      throw InputError(describe(plugin_) + ": its world holds " + std::to_string(held) +
+                       " bodies, the scene " + std::to_string(n));
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const double values[5] = {positions_[2 * i], positions_[2 * i + 1], velocities_[2 * i],
+                                velocities_[2 * i + 1], out.angle[i]};
+      for (const double v : values) {
+        if (!std::isfinite(v)) {
+          throw InputError(describe(plugin_) + ": returned a non-finite state for body " +
+                           names_[i]);
+        }
+      }
+      out.position[i] = {positions_[2 * i], positions_[2 * i + 1]};
+      out.velocity[i] = {velocities_[2 * i], velocities_[2 * i + 1]};
+    }
+  }
+
+  std::span<const CounterDef> counter_defs() const override { return plugin_.counters; }
+  std::span<const double> counters() const override {
+    if (!counters_.empty()) plugin_.api->read_counters(world_, counters_.data());
+    return counters_;
+  }
+  bool degraded() const override { return degraded_; }
+
+ private:
+  const Plugin& plugin_;
+  cb_world* world_ = nullptr;
+  DriveSchedule drives_;
+  std::vector<std::string> names_;
+  mutable std::vector<double> positions_, velocities_, counters_;
+  bool degraded_ = false;
+};
+
+}  // namespace
+
+EngineDef register_plugin() {
+  EngineDef e;
+  e.name = "plugin";
+  e.description =
+      "your own resolver, from a shared library built against chainbench/engine_plugin.h";
+  e.keys = {file_key("path", "the plugin's shared library (.so)")};
+  e.open_keys = true;
+  e.capabilities = [](const EngineSpec& spec) {
+    const std::uint32_t can = load_plugin(spec.get("path")).api->capabilities;
+    Capabilities c;
+    c.rotation = (can & CB_CAN_ROTATE) != 0;
+    c.friction = (can & CB_CAN_FRICTION) != 0;
+    c.restitution = (can & CB_CAN_RESTITUTION) != 0;
+    c.kinematic = (can & CB_CAN_KINEMATIC) != 0;
+    c.axis_drives = (can & CB_CAN_AXIS_DRIVES) != 0;
+    return c;
+  };
+  e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
+    return std::make_unique<PluginEngine>(spec, scene);
+  };
+  return e;
+}
+
+}  // namespace chainbench

@@ -1,0 +1,117 @@
+/* chainbench engine plugins: put your own collision resolver on the bench.
+ *
+ * A plugin is a shared library that exports one function, chainbench_engine_plugin(), returning
+ * a table of functions (cb_engine). chainbench loads it with
+ *     chainbench run --scene pyramid --engines plugin:path=./librelaxation.so,iterations=4
+ * and builds one world per run from a flat description of the scene, then, every step, sets the
+ * velocities of driven bodies, steps, and reads every body's state back. Every other key of the
+ * spec (iterations=4 above) reaches the plugin as a setting.
+ *
+ * Units are metres, kilograms and seconds, y up; bodies are axis-aligned boxes given by centre and
+ * half extents, in scene order, and every index below is a body's place in that order. The
+ * library is C: a plugin can be written in C, C++ or anything that exports C functions.
+ *
+ * Versioning: CHAINBENCH_PLUGIN_ABI changes whenever a structure or a function here changes; a
+ * plugin built against another version is refused with a message, never called.
+ */
+#ifndef CHAINBENCH_ENGINE_PLUGIN_H
+#define CHAINBENCH_ENGINE_PLUGIN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define CHAINBENCH_PLUGIN_ABI 1
+
+/* Body kinds. */
+enum { CB_STATIC = 0, CB_KINEMATIC = 1, CB_DYNAMIC = 2 };
+
+/* What a plugin can simulate (cb_engine.capabilities). A scene that needs more is refused by
+ * chainbench with a message, so a plugin never sees what it cannot do. */
+enum {
+  CB_CAN_ROTATE = 1,      /* bodies turn when cb_world_desc.rotation is set */
+  CB_CAN_FRICTION = 2,    /* cb_body.friction is honoured */
+  CB_CAN_RESTITUTION = 4, /* cb_body.restitution is honoured */
+  CB_CAN_KINEMATIC = 8,   /* CB_KINEMATIC bodies */
+  CB_CAN_AXIS_DRIVES = 16 /* set_velocity with one axis only */
+};
+
+/* Axes of a velocity to set (set_velocity). */
+enum { CB_AXIS_X = 1, CB_AXIS_Y = 2 };
+
+typedef struct cb_body {
+  int32_t kind;           /* CB_STATIC, CB_KINEMATIC or CB_DYNAMIC */
+  double center[2];       /* m */
+  double half_extents[2]; /* m, > 0 */
+  double mass;            /* kg, > 0 for a dynamic body; 0 otherwise */
+  double velocity[2];     /* m/s, initial; a kinematic body keeps it */
+  double gravity_scale;   /* multiplies gravity for this body (dynamic bodies) */
+  double friction;        /* >= 0, as the scene gives it */
+  double restitution;     /* in [0, 1] */
+} cb_body;
+
+typedef struct cb_setting {
+  const char* key;   /* a spec key other than path, e.g. "iterations" */
+  const char* value; /* as typed, e.g. "4" */
+} cb_setting;
+
+typedef struct cb_world_desc {
+  uint32_t abi; /* CHAINBENCH_PLUGIN_ABI */
+  uint32_t body_count;
+  double gravity[2];     /* m/s^2 */
+  double dt;             /* s, the length of every step */
+  int32_t rotation;      /* nonzero: the scene lets bodies turn */
+  const cb_body* bodies; /* body_count bodies, in scene order */
+  uint32_t setting_count;
+  const cb_setting* settings;
+} cb_world_desc;
+
+/* A plugin's world, opaque to chainbench. */
+typedef struct cb_world cb_world;
+
+typedef struct cb_engine {
+  uint32_t abi;                     /* CHAINBENCH_PLUGIN_ABI */
+  uint32_t size;                    /* sizeof(cb_engine) */
+  const char* name;                 /* shown in messages, e.g. "relaxation" */
+  uint32_t capabilities;            /* CB_CAN_* */
+  uint32_t counter_count;           /* named figures read_counters reports per step (<= 16) */
+  const char* const* counter_names; /* counter_count names, [a-z0-9_]; reported as per-step means */
+
+  /* A world built from desc, or NULL with a message written to error (at most error_size bytes,
+   * terminated). An unknown or bad setting is such an error. */
+  cb_world* (*create)(const cb_world_desc* desc, char* error, size_t error_size);
+  /* Sets the velocity of body along the axes set in axes (CB_AXIS_X | CB_AXIS_Y), leaving the
+   * other axis as it is: chainbench drives bodies this way at the start of a step. 0, or nonzero
+   * for a bad body or axes. */
+  int (*set_velocity)(cb_world* world, uint32_t body, double vx, double vy, uint32_t axes);
+  /* Advances the world by desc->dt. Returns 0; 1 when the step was cut short to bound its work
+   * (chainbench then judges the run `budget`); a negative value with a message on error. */
+  int (*step)(cb_world* world, char* error, size_t error_size);
+  /* Writes the state of the first `capacity` bodies: positions and velocities as x, y pairs,
+   * angles in radians (any of the three may be NULL: skip it). Returns how many bodies the world
+   * holds, which must equal body_count. */
+  uint32_t (*read_state)(const cb_world* world, double* positions, double* velocities,
+                         double* angles, uint32_t capacity);
+  /* Writes counter_count values about the last step; may be NULL when counter_count is 0. */
+  void (*read_counters)(const cb_world* world, double* values);
+  void (*destroy)(cb_world* world);
+} cb_engine;
+
+/* The one function a plugin exports. */
+#define CHAINBENCH_PLUGIN_ENTRY "chainbench_engine_plugin"
+typedef const cb_engine* (*cb_entry_fn)(void);
+
+#if defined(_WIN32)
+#define CHAINBENCH_PLUGIN_EXPORT __declspec(dllexport)
+#else
+#define CHAINBENCH_PLUGIN_EXPORT __attribute__((visibility("default")))
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CHAINBENCH_ENGINE_PLUGIN_H */

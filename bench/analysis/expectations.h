@@ -32,7 +32,7 @@ struct ExpectOutcome {
 };
 
 struct ExpectResult {
-  double max_error = 0.0;  // the largest error of any entry
+  double max_error = 0.0;  // the largest error of any entry in metres (at_rest entries aside)
   bool pass = true;
   std::vector<ExpectOutcome> entries;  // one per scene.expect entry, in order
 };

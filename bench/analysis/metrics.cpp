@@ -39,17 +39,21 @@ double magnitude(Vec2d p) {
   return std::max(std::abs(p.x), std::abs(p.y));
 }
 
-std::uint64_t pair_key(std::size_t i, std::size_t j) {
-  return static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint64_t>(j);
-}
-
 }  // namespace
 
 double MetricsRecorder::initial_depth(std::size_t i, std::size_t j) const {
-  if (initial_.empty()) return 0.0;
+  const auto& initial = bounds_.initial_overlaps;
+  if (initial.empty()) return 0.0;
   const std::pair<std::uint64_t, double> key{pair_key(i, j), -HUGE_VAL};
-  const auto it = std::lower_bound(initial_.begin(), initial_.end(), key);
-  return it != initial_.end() && it->first == key.first ? it->second : 0.0;
+  const auto it = std::lower_bound(initial.begin(), initial.end(), key);
+  return it != initial.end() && it->first == key.first ? it->second : 0.0;
+}
+
+// One unit in the last place of a single-precision coordinate of this magnitude: a float engine
+// far from the origin moves in steps of it.
+double float_resolution(Vec2d p) {
+  const auto m = static_cast<float>(std::min(magnitude(p), 3.0e38));
+  return static_cast<double>(std::nextafter(m, HUGE_VALF) - m);
 }
 
 bool below_resolution(double value, double magnitude) {
@@ -82,66 +86,18 @@ PairOverlap MetricsRecorder::deepest_overlap(const Scene& scene, const BodyState
 }
 
 MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
-    : sel_(selection), scene_(scene), dt_(scene.dt), scan_(scene), tunnels_(scene) {
+    : sel_(selection),
+      scene_(scene),
+      dt_(scene.dt),
+      bounds_(motion_bounds(scene)),
+      scan_(scene),
+      tunnels_(scene) {
   const std::size_t n = scene.bodies.size();
-  double fastest = 0.0, drive = 0.0, restitution = scene.restitution, gravity_scale = 0.0;
-  double largest = 0.0;  // largest half diagonal of a dynamic box
   for (std::size_t i = 0; i < n; ++i) {
-    const SceneBody& b = scene.bodies[i];
-    const double speed = std::hypot(b.velocity.x, b.velocity.y);
-    if (b.kind == BodyKind::kDynamic) {
-      dynamic_.push_back(i);
-      fastest = std::max(fastest, speed);
-      gravity_scale = std::max(gravity_scale, std::abs(b.gravity_scale));
-      largest = std::max(largest, std::hypot(b.half_extents.x, b.half_extents.y));
-    } else if (b.kind == BodyKind::kKinematic) {
-      drive = std::max(drive, speed);
-    }
-    restitution = std::max(restitution, scene.restitution_of(b));
+    if (scene.bodies[i].kind == BodyKind::kDynamic) dynamic_.push_back(i);
   }
-  for (const Driver& d : scene.drivers)
-    drive = std::max(drive, std::hypot(d.velocity.x, d.velocity.y));
-
-  // Bodies created overlapping are pushed apart, by up to their overlaps in one step.
-  double total_overlap = 0.0;
-  {
-    const BodyState start = initial_state(scene);
-    PairScan scan(scene);
-    scan.build(start, start);
-    scan.for_each_pair([&](std::size_t i, std::size_t j) {
-      const double d = scan.depth(start, i, j);
-      if (d <= 0.0) return;
-      total_overlap += d;
-      initial_.push_back({pair_key(i, j), d});
-    });
-    std::sort(initial_.begin(), initial_.end());
-  }
-  // Pushing apart the overlaps a scene starts with may move a body further than any speed
-  // explains, by up to those overlaps in all; beyond that, a visible share of the smallest box
-  // (position rounding: a float engine far from the origin moves in steps of its resolution).
-  double smallest = HUGE_VAL;
-  for (const std::size_t i : dynamic_) {
-    smallest = std::min(
-        {smallest, 2.0 * scene.bodies[i].half_extents.x, 2.0 * scene.bodies[i].half_extents.y});
-  }
-  recovery_ = total_overlap + (dynamic_.empty() ? 0.0 : 0.05 * smallest);
-  slack_.assign(n, recovery_);
-
-  // A body can fall for the whole run, keep its start speed, be hit by something driven or
-  // falling, and bounce off it at up to (1 + e) times that speed. A quarter more, plus 1 m/s.
-  const double g = std::hypot(scene.gravity.x, scene.gravity.y);
-  const double duration = scene.dt * scene.steps;
-  const double fall = g * gravity_scale * duration;
-  speed_bound_ = 1.25 * ((1.0 + restitution) * drive + fastest + fall) + 1.0;
-  const double push = std::max({drive, fastest, fall});
-  reach_.assign(n, 0.0);
-  for (const std::size_t i : dynamic_) {
-    const SceneBody& b = scene.bodies[i];
-    const double own =
-        std::hypot(b.velocity.x, b.velocity.y) + g * std::abs(b.gravity_scale) * duration;
-    const double bound = 1.25 * ((1.0 + restitution) * push + own) + 1.0;
-    reach_[i] = bound * duration + total_overlap + 2.0 * largest;
-  }
+  slack_ = bounds_.allowance;
+  depth_ = bounds_.initial_depth;
   step_efd_.assign(n, 0.0);
   step_pen_.assign(n, 0.0);
 }
@@ -159,30 +115,27 @@ void MetricsRecorder::observe(const BodyState& before, const BodyState& after, i
     }
     body_steps_ += dynamic_.size();
   }
-  const bool overlaps = sel_.penetration || per_body || depth;
-  if (overlaps || sel_.stability) {
+  const bool overlaps = sel_.penetration || per_body || depth || sel_.stability;
+  if (overlaps) {
     scan_.build(before, after);
     deepest_ = PairOverlap{};
     deepest_.step = step;
-    if (per_body) std::fill(step_pen_.begin(), step_pen_.end(), 0.0);
+    std::fill(step_pen_.begin(), step_pen_.end(), 0.0);
     scan_.for_each_pair([&](std::size_t i, std::size_t j) {
       if (sel_.stability) tunnels_.check(before, after, i, j, step);
-      if (!overlaps) return;
       const double d = scan_.depth(after, i, j);
       const Vec2d hi = scan_.half(i), hj = scan_.half(j);
       const double scale = std::max(
           {magnitude(after.position[i]), magnitude(after.position[j]), hi.x + hj.x, hi.y + hj.y});
       if (d <= 0.0 || below_resolution(d, scale)) return;
-      // A pair created overlapping may stay as deep as it started: how fast it must recover is
-      // for the scene to state (a windowed no_overlap expectation).
-      const double tolerance =
-          std::max(scene_.penetration_tolerance.value_or(0.1 * std::min({hi.x, hi.y, hj.x, hj.y})),
-                   initial_depth(i, j));
+      // A pair created overlapping may stay as deep as it started while it recovers, but not at
+      // the end of the run.
+      const double base =
+          scene_.penetration_tolerance.value_or(0.1 * std::min({hi.x, hi.y, hj.x, hj.y}));
+      const double tolerance = step < scene_.steps ? std::max(base, initial_depth(i, j)) : base;
       if (d > deepest_.depth) deepest_ = {d, i, j, step, tolerance};
-      if (per_body) {
-        step_pen_[i] = std::max(step_pen_[i], d);
-        step_pen_[j] = std::max(step_pen_[j], d);
-      }
+      step_pen_[i] = std::max(step_pen_[i], d);
+      step_pen_[j] = std::max(step_pen_[j], d);
       if (sel_.penetration && d / tolerance > worst_ratio_) {
         worst_ratio_ = d / tolerance;
         worst_ = {d, i, j, step, tolerance};
@@ -204,13 +157,18 @@ void MetricsRecorder::observe(const BodyState& before, const BodyState& after, i
       if (speed > peak_speed_) peak_speed_ = speed, peak_body_ = i, peak_step_ = step;
       // A leaky bucket: a step slower than the bound gives back what faster ones took, up to
       // the allowance, so that over any stretch of steps a body travels at most the bound times
-      // its duration plus the allowance.
-      slack_[i] = std::min(recovery_, slack_[i] + speed_bound_ * dt_ - moved);
+      // its duration plus the allowance. A step may also push the body out of the overlap it was
+      // in, and round it to single precision, without counting against it.
+      const double bound = bounds_.speed[i];
+      if (!std::isfinite(bound)) continue;
+      const double free = bound * dt_ + depth_[i] + float_resolution(p);
+      slack_[i] = std::min(bounds_.allowance[i], slack_[i] + free - moved);
       if (slack_[i] < 0.0 && !blow_up_) {
         blow_up_ = true, blow_up_body_ = i, blow_up_step_ = step, blow_up_speed_ = speed;
       }
     }
   }
+  if (overlaps) depth_ = step_pen_;  // each body's deepest overlap now, for the next step
 }
 
 Metrics MetricsRecorder::result(const BodyState& last) const {
@@ -228,16 +186,19 @@ Metrics MetricsRecorder::result(const BodyState& last) const {
     m.peak_speed = peak_speed_;
     m.peak_speed_body = peak_body_;
     m.peak_speed_step = peak_step_;
-    m.speed_bound = speed_bound_;
+    m.speed_bound =
+        bounds_.unbounded.empty() ? std::optional<double>(bounds_.largest_speed) : std::nullopt;
+    m.speed_unbounded = bounds_.unbounded;
     m.finite = finite_;
     m.blow_up = blow_up_;
     m.blow_up_body = blow_up_body_;
     m.blow_up_step = blow_up_step_;
     m.blow_up_speed = blow_up_speed_;
+    m.blow_up_bound = blow_up_ ? bounds_.speed[blow_up_body_] : 0.0;
     for (const std::size_t i : dynamic_) {
       const Vec2d p = last.position[i], p0 = scene_.bodies[i].center;
       const double d = std::hypot(p.x - p0.x, p.y - p0.y);
-      if (std::isfinite(d) && d > reach_[i]) m.escaped.push_back(i);
+      if (std::isfinite(d) && d > bounds_.reach[i]) m.escaped.push_back(i);
     }
     m.in_bounds = m.escaped.empty();
     m.tunnelled = tunnels_.count() > 0;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "engine.h"
+#include "motion_bounds.h"
 #include "pair_scan.h"
 #include "scene.h"
 #include "tunnelling.h"
@@ -47,14 +48,19 @@ struct Metrics {
   std::optional<double> peak_speed;
   std::size_t peak_speed_body = 0;
   int peak_speed_step = 0;
-  std::optional<double> speed_bound;  // what gravity, drivers and initial velocities can give
-  // Blow-up: over some stretch of steps a body travelled further than the speed bound allows in
-  // that time, by more than the overlaps the scene starts with can explain plus 5% of the
-  // smallest box. The body, the step it crossed that line and its speed then.
+  // The largest per-body speed bound (motion_bounds.h); none when the scene bounds no speed, and
+  // then why.
+  std::optional<double> speed_bound;
+  std::string speed_unbounded;
+  // Blow-up: over some stretch of steps a body travelled further than its speed bound allows in
+  // that time, by more than its allowance (motion_bounds.h), not counting pushes out of overlaps
+  // it was in and single-precision rounding. The body, the step it crossed that line and its
+  // speed then.
   std::optional<bool> finite, blow_up, tunnelled;
   std::size_t blow_up_body = 0;
   int blow_up_step = 0;
   double blow_up_speed = 0.0;
+  double blow_up_bound = 0.0;  // that body's speed bound
   // Escapes: bodies that ended farther from their start than anything in the scene could send
   // them (judged per body: the body's own speed bound over the run, plus initial overlaps).
   std::optional<bool> in_bounds;
@@ -88,19 +94,17 @@ class MetricsRecorder {
   MetricSelection sel_;
   const Scene& scene_;
   double dt_;
+  MotionBounds bounds_;
   std::vector<std::size_t> dynamic_;
-  std::vector<double> reach_;  // per body: how far from its start anything could send it, m
-  std::vector<std::pair<std::uint64_t, double>> initial_;  // overlaps at the start, by pair
-  double speed_bound_;
   PairScan scan_;
   TunnelWatch tunnels_;
   std::vector<double> step_efd_, step_pen_;
+  std::vector<double> slack_;  // per body: what is left of its allowance, m
+  std::vector<double> depth_;  // per body: its deepest overlap in the last state observed, m
   double efd_total_ = 0.0, efd_max_ = 0.0, max_pen_ = 0.0;
   double peak_speed_ = 0.0;
   std::size_t peak_body_ = 0;
   int peak_step_ = 0;
-  double recovery_ = 0.0;      // how far beyond the bound a body may travel, m
-  std::vector<double> slack_;  // per body: what is left of that allowance, m
   bool blow_up_ = false;
   std::size_t blow_up_body_ = 0;
   int blow_up_step_ = 0;

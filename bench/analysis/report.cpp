@@ -141,7 +141,7 @@ namespace {
 
 std::string expect_cell(const EngineRun& run) {
   if (!run.expect) return "-";
-  return (run.expect->pass ? "pass " : "FAIL ") + fmt_g(run.expect->max_error);
+  return (run.expect->pass ? "pass " : "FAIL ") + fmt_g(run.expect->max_error) + " m";
 }
 
 // The engines that meet every expectation, and those that miss some, by label.
@@ -280,12 +280,15 @@ ordered_json run_json(const RunReport& r) {
                             {"depth", json_number(w.depth)},
                             {"tolerance", json_number(w.tolerance)},
                             {"step", w.step}};
+    } else if (mt.max_penetration) {
+      m["worst_overlap"] = nullptr;  // measured: nothing overlapped
     }
     if (mt.peak_speed) {
       m["peak_speed"] = json_number(*mt.peak_speed);
       m["peak_speed_body"] = s.bodies[mt.peak_speed_body].name;
       m["peak_speed_step"] = mt.peak_speed_step;
-      m["speed_bound"] = json_number(*mt.speed_bound);
+      m["speed_bound"] = mt.speed_bound ? json_number(*mt.speed_bound) : ordered_json(nullptr);
+      if (!mt.speed_unbounded.empty()) m["speed_unbounded"] = mt.speed_unbounded;
       m["finite"] = *mt.finite;
       m["in_bounds"] = *mt.in_bounds;
       m["escaped"] = ordered_json::array();

@@ -37,7 +37,7 @@ Summary summarize_case(const StressCase& c, const EngineSpec& engine) {
     const Metrics& m = run.metrics;
     s.max_penetration = *m.max_penetration;
     s.peak_speed = *m.peak_speed;
-    s.speed_bound = *m.speed_bound;
+    s.speed_bound = m.speed_bound.value_or(HUGE_VAL);
     s.ms_per_step = run.timing.median_ms;
     s.finite = *m.finite, s.in_bounds = *m.in_bounds, s.blow_up = *m.blow_up;
     s.tunnelled = *m.tunnelled;
@@ -152,7 +152,6 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
   v.case_label = c.label();
   v.group = c.group;
   v.engine = engine;
-  v.known_failure = known_failure(engine, v.case_label);
   try {
     if (std::string why = missing_capability(engine, make_scene(c.scene, c.sets)); !why.empty()) {
       v.skipped = why;
@@ -166,13 +165,14 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
   v.finished = child.finished, v.hang = child.hang;
   v.signal = child.signal, v.exit_status = child.exit_status;
   v.wall_s = child.wall_s;
-  if (!v.finished) return v;
+  if (!v.finished) return v;  // a crash or a hang is never a known failure
   v.error = s.error;
   v.judged = static_cast<VerdictClass>(s.judged);
   v.detail = s.detail;
   v.max_penetration = s.max_penetration, v.peak_speed = s.peak_speed, v.speed_bound = s.speed_bound;
   v.ms_per_step = s.ms_per_step;
   v.finite = s.finite, v.in_bounds = s.in_bounds, v.blow_up = s.blow_up;
+  v.known_failure = known_failure(engine, v.case_label, to_string(v.verdict()));
   v.tunnelled = s.tunnelled, v.expect_pass = s.expect_pass;
   v.degraded_steps = s.degraded_steps;
   for (std::uint32_t k = 0; k < s.counter_count && k < kMaxCounters; ++k)

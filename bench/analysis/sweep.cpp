@@ -11,12 +11,13 @@ namespace chainbench {
 namespace {
 
 // The error of a point against the scene's expectations: the largest of its entries' errors
-// (distance from an expected centre, or how far beyond a bound or limit), and the root mean square
-// over every body each entry names.
-PositionError expectation_error(const ExpectResult& r) {
+// (distance from an expected centre, or how far beyond a bound or overlap limit), and the root mean
+// square over every body each entry names. Rest limits, in m/s, count in the verdict only.
+PositionError expectation_error(const Scene& scene, const ExpectResult& r) {
   PositionError e;
   double sum = 0.0, count = 0.0;
   for (const ExpectOutcome& o : r.entries) {
+    if (scene.expect[o.index].kind == Expectation::Kind::kAtRest) continue;  // a speed, not metres
     if (!std::isfinite(o.error) || !std::isfinite(o.rms)) return {HUGE_VAL, HUGE_VAL};
     e.max = std::max(e.max, o.error);
     sum += o.rms * o.rms * static_cast<double>(o.bodies);
@@ -62,7 +63,7 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
     SweepPoint point;
     point.run = run_engine(scene, spec, run_options);
     if (point.run.interrupted) break;  // a half-run point says nothing; keep the others
-    point.error = use_expect ? expectation_error(*point.run.expect)
+    point.error = use_expect ? expectation_error(scene, *point.run.expect)
                              : position_error(scene, point.run.final_positions,
                                               result.reference_run->final_positions);
     result.points.push_back(std::move(point));
@@ -80,12 +81,26 @@ double timing_noise(const Timing& t) {
   return std::max(t.spread_ms, 0.05 * t.median_ms);
 }
 
+// A point whose run failed outright (unstable, escaped, tunnelled) is no setting to choose,
+// however fast or close it ended.
+bool eligible(const SweepPoint& p) {
+  if (!p.run.verdict) return true;
+  const VerdictClass v = p.run.verdict->worst;
+  return v != VerdictClass::kUnstable && v != VerdictClass::kEscaped &&
+         v != VerdictClass::kTunnelled && v < VerdictClass::kError;
+}
+
 void mark_pareto(std::vector<SweepPoint>& points) {
   // Two medians closer than their noise together are the same speed: noise must not decide.
   for (SweepPoint& p : points) {
     const Timing& t = p.run.timing;
     const double e = p.error.rms;
+    if (!eligible(p)) {
+      p.pareto = false;
+      continue;
+    }
     p.pareto = std::none_of(points.begin(), points.end(), [&](const SweepPoint& q) {
+      if (!eligible(q)) return false;
       const Timing& u = q.run.timing;
       const double noise = timing_noise(t) + timing_noise(u);
       const bool faster = u.median_ms < t.median_ms - noise;

@@ -49,7 +49,8 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
 // step times, and at least 5% of the median.
 double timing_noise(const Timing& t);
 // Marks the points no other point beats on both ms/step and RMS error; a point is faster than
-// another only by more than their timing noise together.
+// another only by more than their timing noise together. Points whose verdict is unstable,
+// escaped, tunnelled or worse are never on the front, and beat none.
 void mark_pareto(std::vector<SweepPoint>& points);
 
 void print_sweep_table(std::ostream& out, const SweepResult& result);

@@ -55,10 +55,10 @@ TunnelWatch::TunnelWatch(const Scene& scene) {
   }
 }
 
-std::int8_t TunnelWatch::entry_of(std::uint64_t pair) const {
+const TunnelWatch::Inside* TunnelWatch::find(std::uint64_t pair) const {
   const auto it = std::lower_bound(inside_.begin(), inside_.end(), pair,
                                    [](const Inside& p, std::uint64_t key) { return p.pair < key; });
-  return it != inside_.end() && it->pair == pair ? it->entry : kNoFace;
+  return it != inside_.end() && it->pair == pair ? &*it : nullptr;
 }
 
 void TunnelWatch::check(const BodyState& before, const BodyState& after, std::size_t i,
@@ -68,12 +68,26 @@ void TunnelWatch::check(const BodyState& before, const BodyState& after, std::si
                  before.position[i].y - before.position[j].y};
   const Vec2d r1{after.position[i].x - after.position[j].x,
                  after.position[i].y - after.position[j].y};
+  // Whether the segment r0 -> r1 crosses the middle (r = 0) along `axis` with at least half of
+  // the smaller box across the other along the other axis.
+  auto deep_crossing = [&](int axis) {
+    const double a0 = axis == 0 ? r0.x : r0.y, a1 = axis == 0 ? r1.x : r1.y;
+    if ((a0 > 0.0) == (a1 > 0.0) && a1 != 0.0) return false;
+    const double t = a0 == a1 ? 0.0 : a0 / (a0 - a1);
+    const double b0 = axis == 0 ? r0.y : r0.x, b1 = axis == 0 ? r1.y : r1.x;
+    const double across = axis == 0 ? h.y : h.x;
+    const double smaller =
+        axis == 0 ? std::min(half_[i].y, half_[j].y) : std::min(half_[i].x, half_[j].x);
+    return std::abs(b0 + t * (b1 - b0)) <= across - smaller;
+  };
   const std::uint64_t pair = static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint64_t>(j);
-  std::int8_t entry = kNoFace, exit = kNoFace;
+  Inside now{pair, kNoFace, false};
+  std::int8_t exit = kNoFace;
   if (inside(r0, h)) {
-    entry = entry_of(pair);
+    if (const Inside* was = find(pair)) now = *was;
+    if (now.entry != kNoFace) now.deep = now.deep || deep_crossing(now.entry / 2);
     if (inside(r1, h)) {
-      next_.push_back({pair, entry});
+      next_.push_back(now);
       return;
     }
     Crossing c;
@@ -82,15 +96,16 @@ void TunnelWatch::check(const BodyState& before, const BodyState& after, std::si
   } else {
     Crossing c;
     if (!cross(r0, r1, h, c)) return;
-    entry = c.enter_face;
+    now.entry = c.enter_face;
+    now.deep = deep_crossing(now.entry / 2);
     if (inside(r1, h)) {
-      next_.push_back({pair, entry});
+      next_.push_back(now);
       return;
     }
     exit = c.exit_face;
   }
-  if (entry == kNoFace || exit != opposite(entry)) return;
-  // The relative centre left through the far face: the body on the entry side went through.
+  if (now.entry == kNoFace || exit != opposite(now.entry) || !now.deep) return;
+  // The relative centre left through the far face: the body that moved more went through.
   const bool i_moved = std::hypot(after.position[i].x - before.position[i].x,
                                   after.position[i].y - before.position[i].y) >=
                        std::hypot(after.position[j].x - before.position[j].x,

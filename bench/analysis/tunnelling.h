@@ -4,10 +4,13 @@
 // on the side opposite to the one it went in by. For each pair, the centre of one relative to the
 // other moves on a segment each step; the boxes overlap while that relative centre is inside the
 // box of their summed half extents. A pair is tunnelled when the relative centre leaves that box
-// through the face opposite to the face it entered by: within one step (a fast body crossing a
-// thin one) or over several (a box sinking through a floor). Pairs that start the run overlapping
-// have no entry face and are not judged. With rotation each box counts as the square inscribed in
-// the disc its sides always contain, so a pair judged tunnelled certainly crossed.
+// through the face opposite to the face it entered by, within one step (a fast body crossing a
+// thin one) or over several (a box sinking through a floor), and on the way crossed the other's
+// middle with at least half of the smaller box across it: a box that grazes another's corner and
+// slides along its side, overlapping it a little, has not passed through it. Pairs that start the
+// run overlapping have no entry face and are not judged. With rotation each box counts as the
+// square inscribed in the disc its sides always contain, so a pair judged tunnelled certainly
+// crossed.
 #pragma once
 
 #include "engine.h"
@@ -45,8 +48,9 @@ class TunnelWatch {
   struct Inside {
     std::uint64_t pair;  // i << 32 | j
     std::int8_t entry;
+    bool deep;  // crossed the middle across the entry face since it entered
   };
-  std::int8_t entry_of(std::uint64_t pair) const;
+  const Inside* find(std::uint64_t pair) const;
 
   std::vector<Vec2d> half_;
   std::vector<Inside> inside_, next_;  // pairs overlapping after the last step / this step

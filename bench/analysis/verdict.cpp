@@ -3,12 +3,21 @@
 #include "text_table.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace chainbench {
 namespace {
 
+// Four significant digits below the metre, and every digit down to the millimetre above it, so
+// that a point far from the origin still shows where it is.
+std::string coordinate(double v) {
+  const double magnitude = std::abs(v);
+  const int digits = magnitude >= 1.0 ? 4 + static_cast<int>(std::log10(magnitude)) : 4;
+  return fmt_g(v, std::min(digits, 17));
+}
+
 std::string point(Vec2d p) {
-  return concat({"(", fmt_g(p.x, 4), ", ", fmt_g(p.y, 4), ")"});
+  return concat({"(", coordinate(p.x), ", ", coordinate(p.y), ")"});
 }
 
 std::string at_state(int k) {
@@ -96,7 +105,7 @@ std::optional<Verdict> judge(const Scene& scene, const Metrics& m,
   if (*m.blow_up) {
     add(VerdictClass::kUnstable, concat({name(m.blow_up_body), " moved at ", fmt_g(m.blow_up_speed),
                                          " m/s at step ", std::to_string(m.blow_up_step),
-                                         ", above the bound ", fmt_g(*m.speed_bound), " m/s"}));
+                                         ", above its bound ", fmt_g(m.blow_up_bound), " m/s"}));
   }
   if (!m.escaped.empty()) {
     const std::string more = m.escaped.size() > 1
@@ -114,9 +123,17 @@ std::optional<Verdict> judge(const Scene& scene, const Metrics& m,
                 at_state(m.tunnel->step), all}));
   }
   if (expect && !expect->pass) {
+    // The entry furthest from holding first.
+    std::vector<const ExpectOutcome*> failed;
     for (const ExpectOutcome& o : expect->entries) {
-      if (!o.pass) add(VerdictClass::kWrong, describe(scene, o));
+      if (!o.pass) failed.push_back(&o);
     }
+    std::stable_sort(
+        failed.begin(), failed.end(), [](const ExpectOutcome* a, const ExpectOutcome* b) {
+          return !(a->error <= b->error);  // larger first, never-checked (infinite) first of all
+        });
+    for (const ExpectOutcome* o : failed)
+      add(VerdictClass::kWrong, describe(scene, *o));
   }
   if (m.worst_overlap && m.worst_overlap->depth > m.worst_overlap->tolerance) {
     const PairOverlap& w = *m.worst_overlap;

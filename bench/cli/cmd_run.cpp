@@ -67,7 +67,8 @@ int run(const RunArgs& a) {
       throw InputError("--require " + text + ": not among the engines run (" +
                        (a.engines.empty() ? default_engine_list() : a.engines) + ")");
     }
-    required.push_back(std::move(spec));
+    if (std::find(required.begin(), required.end(), spec) == required.end())
+      required.push_back(std::move(spec));
   }
   RunOptions options;
   options.metrics = parse_metric_selection(a.metrics);
@@ -113,6 +114,10 @@ int run(const RunArgs& a) {
   finish_output(csv_out.get(), a.csv);
   finish_output(trace_out.get(), a.trace);
   int status = 0;
+  if (!required.empty() && scene.expect.empty()) {
+    std::cerr << "chainbench: note: the scene states no expectations here; --require judges the "
+                 "verdict alone\n";
+  }
   for (const EngineSpec& spec : required) {
     const auto run = std::find_if(report.runs.begin(), report.runs.end(),
                                   [&](const EngineRun& r) { return r.spec == spec; });

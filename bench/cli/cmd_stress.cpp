@@ -60,6 +60,11 @@ int run(const StressArgs& a) {
   print_stress_table(std::cout, verdicts);
   if (json_out) *json_out << stress_json(verdicts, a.quick).dump(2) << '\n';
   finish_output(json_out.get(), a.json);
+  if (std::none_of(engines.begin(), engines.end(),
+                   [](const EngineSpec& e) { return is_gate(e); })) {
+    std::cerr << "chainbench: note: no engine in the list gates the run (the modern chain solver "
+                 "does): the exit status judges nothing\n";
+  }
   std::map<std::string, int> failures;  // per gate engine (registry.h)
   for (const StressVerdict& v : verdicts)
     failures[v.engine.label()] += v.fatal();

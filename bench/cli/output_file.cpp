@@ -6,6 +6,10 @@ namespace chainbench {
 
 std::unique_ptr<std::ofstream> open_output(const std::string& path, const char* option) {
   if (path.empty()) return nullptr;
+  if (path == "-") {
+    throw InputError(std::string(option) +
+                     " -: standard output carries the table; give a file name (/dev/stdout works)");
+  }
   auto out = std::make_unique<std::ofstream>(path, std::ios::binary | std::ios::trunc);
   if (!*out) throw InputError(std::string(option) + ": cannot write " + path);
   return out;

@@ -1,6 +1,7 @@
 #include "registry.h"
 
 #include "input_error.h"
+#include "text_table.h"
 
 #include <algorithm>
 #include <charconv>
@@ -86,12 +87,11 @@ std::string missing_capability(const EngineSpec& spec, const Scene& scene) {
     const SceneBody& b = scene.bodies[i];
     const std::string at = "bodies[" + std::to_string(i) + "] (" + b.name + ")";
     if (!can.friction && scene.friction_of(b) > 0.0) {
-      return who + " has no friction, and " + at + " has friction " +
-             std::to_string(scene.friction_of(b));
+      return who + " has no friction, and " + at + " has friction " + fmt_g(scene.friction_of(b));
     }
     if (!can.restitution && scene.restitution_of(b) > 0.0) {
       return who + " does not bounce, and " + at + " has restitution " +
-             std::to_string(scene.restitution_of(b));
+             fmt_g(scene.restitution_of(b));
     }
     if (!can.kinematic && b.kind == BodyKind::kKinematic) {
       return who + " has no kinematic bodies, and " + at + " is one";
@@ -155,10 +155,11 @@ bool is_gate(const EngineSpec& spec) {
   return !e.gate.empty() && parse_engine_spec(e.gate) == spec;
 }
 
-std::string known_failure(const EngineSpec& spec, const std::string& stress_case) {
+std::string known_failure(const EngineSpec& spec, const std::string& stress_case,
+                          const std::string& verdict) {
   if (!is_gate(spec)) return {};
-  for (const auto& [label, reason] : engine_def(spec.engine).known_failures) {
-    if (label == stress_case) return reason;
+  for (const EngineDef::KnownFailure& k : engine_def(spec.engine).known_failures) {
+    if (k.stress_case == stress_case && k.verdict == verdict) return k.reason;
   }
   return {};
 }

@@ -40,8 +40,13 @@ void check_expectation(Checker& c, const Scene& s, std::size_t i) {
   const Expectation& e = s.expect[i];
   const std::string at = "expect[" + std::to_string(i) + "]";
   const bool every = e.body == Expectation::kEveryDynamic;
+  const bool any_dynamic = std::any_of(s.bodies.begin(), s.bodies.end(), [](const SceneBody& b) {
+    return b.kind == BodyKind::kDynamic;
+  });
   if (e.kind != Kind::kNoOverlap) {
-    if (every && e.kind == Kind::kCenter) {
+    if (every && !any_dynamic) {
+      c.add(at + ".body", "\"*\" names every dynamic body, and the scene has none");
+    } else if (every && e.kind == Kind::kCenter) {
       c.add(at + ".body", "\"*\" cannot have one expected centre: name a body");
     } else if (!every && e.body >= s.bodies.size()) {
       c.add(at + ".body", "names no body of the scene");
@@ -126,6 +131,7 @@ std::vector<SceneIssue> validate(const Scene& s) {
     const std::string at = "bodies[" + std::to_string(i) + "]";
     if (!b.name.empty() && !names.insert(b.name).second)
       c.add(at + ".name", "\"" + b.name + "\" names two bodies");
+    if (b.name == "*") c.add(at + ".name", "\"*\" is kept for \"every dynamic body\" in expect");
     c.finite_within(at + ".center[0]", b.center.x, -L::kMaxCoordinate, L::kMaxCoordinate,
                     "within +-1e8 m");
     c.finite_within(at + ".center[1]", b.center.y, -L::kMaxCoordinate, L::kMaxCoordinate,

@@ -87,8 +87,13 @@ class Reader {
 
   bool integer(const json& v, const std::string& path, long long lo, long long hi, int& out) {
     if (!v.is_number_integer()) {
-      problem(path, std::string("must be a whole number, got ") +
-                        (v.is_number() ? "a fraction" : type_name(v)));
+      // A whole number too large for 64 bits arrives as a float.
+      const bool whole = v.is_number_float() && std::isfinite(v.get<double>()) &&
+                         v.get<double>() == std::floor(v.get<double>());
+      problem(path, whole ? "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                                "], got " + v.dump()
+                          : std::string("must be a whole number, got ") +
+                                (v.is_number() ? "a fraction" : type_name(v)));
       return false;
     }
     const bool is_unsigned = v.is_number_unsigned();
@@ -143,10 +148,13 @@ class Reader {
   std::size_t count_ = 0;
 };
 
-// Replays a parse with SAX events to learn where in the document the parser gave up: the DOM
-// parser only says at which byte.
-class PathTracker : public nlohmann::json_sax<json> {
+// Replays a parse with SAX events, knowing at each event where in the document it is: it tells
+// where the parser gave up (the DOM parser only says at which byte), and finds keys given twice in
+// one object, which the DOM parser silently keeps the last of.
+class JsonWalk : public nlohmann::json_sax<json> {
  public:
+  // With a reader, every key given twice is reported to it.
+  explicit JsonWalk(Reader* duplicates = nullptr) : duplicates_(duplicates) {}
   bool null() override { return value(); }
   bool boolean(bool) override { return value(); }
   bool number_integer(number_integer_t) override { return value(); }
@@ -156,7 +164,11 @@ class PathTracker : public nlohmann::json_sax<json> {
   bool binary(binary_t&) override { return value(); }
   bool start_object(std::size_t) override { return open(false); }
   bool key(string_t& k) override {
-    frames_.back().key = k;
+    Frame& f = frames_.back();
+    f.key = k;
+    if (duplicates_ && std::find(f.keys.begin(), f.keys.end(), k) != f.keys.end())
+      duplicates_->problem(path(), "is given twice (one value per key)");
+    f.keys.push_back(k);
     return true;
   }
   bool end_object() override { return close(); }
@@ -174,9 +186,12 @@ class PathTracker : public nlohmann::json_sax<json> {
     std::string p;
     for (const Frame& f : frames_) {
       if (f.array) {
-        p += "[" + std::to_string(f.index) + "]";
+        p.push_back('[');
+        p.append(std::to_string(f.index));
+        p.push_back(']');
       } else if (!f.key.empty()) {
-        p += (p.empty() ? "" : ".") + f.key;
+        if (!p.empty()) p.push_back('.');
+        p.append(f.key);
       }
     }
     return p.empty() ? "(root)" : p;
@@ -188,19 +203,21 @@ class PathTracker : public nlohmann::json_sax<json> {
     bool array;
     std::size_t index = 0;
     std::string key;
+    std::vector<std::string> keys;
   };
   bool value() {
     if (!frames_.empty() && frames_.back().array) ++frames_.back().index;
     return true;
   }
   bool open(bool array) {
-    frames_.push_back({array, 0, {}});
+    frames_.push_back({array, 0, {}, {}});
     return true;
   }
   bool close() {
     frames_.pop_back();
     return value();
   }
+  Reader* duplicates_;
   std::vector<Frame> frames_;
   std::string error_;
 };
@@ -372,7 +389,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   try {
     root = json::parse(text);
   } catch (const json::exception& e) {  // syntax errors, and numbers beyond double range
-    PathTracker tracker;
+    JsonWalk tracker;
     json::sax_parse(text, &tracker);
     throw InputError(
         source + ": " + tracker.path() + ": " +
@@ -380,6 +397,8 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   }
   Reader r(source);
   Scene s;
+  JsonWalk duplicates(&r);
+  json::sax_parse(text, &duplicates);
   if (!root.is_object()) {
     r.problem("(root)", std::string("must be an object, got ") + Reader::type_name(root));
     r.fail();

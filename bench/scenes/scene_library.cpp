@@ -188,6 +188,10 @@ void expect_at_rest_where_built(Scene& s) {
     s.expect.push_back(expect_moved(kEvery, {0.0, 0.0}, kVisible * smallest));
 }
 
+double fallen(double g, double dt, int steps) {
+  return g * dt * dt * steps * (steps + 1.0) / 2.0;
+}
+
 double driven_push_distance(double v, double pusher, double row, double dt, int steps) {
   const double r = row / (pusher + row);
   return v * dt * (steps - (row / pusher) * (1.0 - std::pow(r, steps)));

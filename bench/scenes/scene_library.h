@@ -79,6 +79,10 @@ Expectation expect_no_overlap(double depth, std::optional<int> from_step = std::
 // Every dynamic body stays where it was built, within kVisible of the smallest dynamic box.
 void expect_at_rest_where_built(Scene& s);
 
+// How far a body falls from rest in `steps` steps of dt under gravity g, integrated as the engines
+// do (velocity first, then position): g dt^2 steps (steps + 1) / 2.
+double fallen(double g, double dt, int steps);
+
 // How far a row of mass `row` moves when a body of mass `pusher` touching it has its velocity set
 // to v at the start of each of `steps` steps of dt and every push shares momentum (perfectly
 // inelastic): in step k both move at u_k = (pusher v + row u_{k-1}) / (pusher + row), so they

@@ -26,22 +26,25 @@ Scene seeded(const char* name) {
 }
 
 // 6eb2bf7: three 50 px boxes staggered 20 px, the lowest static.
-Scene seed_stack(const SceneParams&) {
+Scene seed_stack(const SceneParams& p) {
   Scene s = seeded("seed_stack");
   const std::size_t top = px_box(s, "box0", BodyKind::kDynamic, 100, 200, 50, 50);
   const std::size_t middle = px_box(s, "box1", BodyKind::kDynamic, 120, 270, 50, 50);
   px_box(s, "base", BodyKind::kStatic, 140, 340, 50, 50);
   // Upright and frictionless, each box falls straight down onto the one below (they overlap by
   // 30 px): box1 rests on the base's top (y = -6.8 m), box0 on box1, neither moves sideways.
-  s.expect.push_back(build::expect_center(middle, {2.9, -6.3}, build::kVisible));
-  s.expect.push_back(build::expect_center(top, {2.5, -5.3}, build::kVisible));
+  const double fall = build::fallen(kGravity, p.get("dt"), p.count("steps"));
+  s.expect.push_back(build::expect_center(
+      middle, {2.9, std::max(-6.3, s.bodies[middle].center.y - fall)}, build::kVisible));
+  s.expect.push_back(build::expect_center(top, {2.5, std::max(-5.3, s.bodies[top].center.y - fall)},
+                                          build::kVisible));
   return s;
 }
 
 // 4f512fa: a platform rising at 1 px/frame under a static ceiling, with the 20 x 40 px player
 // falling onto it. The original's massless, gravity-free box becomes 1 kg with gravity off (a
 // dynamic body here needs mass); it stands apart and is never touched.
-Scene seed_squeeze(const SceneParams&) {
+Scene seed_squeeze(const SceneParams& p) {
   Scene s = seeded("seed_squeeze");
   px_box(s, "player", BodyKind::kDynamic, 100, 100, 20, 40);
   const std::size_t block = px_box(s, "block", BodyKind::kDynamic, 300, 100, 50, 50);
@@ -56,7 +59,7 @@ Scene seed_squeeze(const SceneParams&) {
   Expectation rides = build::expect_bounds(0, 2.2 - build::kVisible * 0.4, std::nullopt,
                                            2.2 + build::kVisible * 0.4, std::nullopt);
   rides.from_step = 0;
-  rides.to_step = 200;
+  rides.to_step = std::min(200, p.count("steps"));
   s.expect.push_back(rides);
   // Squeezed to nothing, the 0.8 m player overlaps one of them by up to half its height.
   s.penetration_tolerance = 0.4 + build::kVisible * 0.4;
@@ -67,23 +70,23 @@ Scene seed_squeeze(const SceneParams&) {
 // it; 60 px pitch (from 71f99ca), starting at x = 30 px so that both rows fit the room. The tile
 // level around them becomes a floor at its bottom row
 // (the 20 x 14 map of 32 px tiles: top face at 416 px) and walls at its sides.
-Scene seed_falling_row(const SceneParams&) {
+Scene seed_falling_row(const SceneParams& p) {
   Scene s = seeded("seed_falling_row");
   px_box(s, "floor", BodyKind::kStatic, 0, 416, 640, 32);
   px_box(s, "wall_left", BodyKind::kStatic, -32, 0, 32, 448);
   px_box(s, "wall_right", BodyKind::kStatic, 640, 0, 32, 448);
   // Each row falls straight down: the low row onto the floor (top at y = -8.32 m), each high box
   // onto the low box it overlaps by 40 px (its other neighbour is 10 px away).
-  for (int i = 0; i < 10; ++i) {
-    const std::size_t b =
-        px_box(s, build::label("low", i), BodyKind::kDynamic, 30 + 60 * i, 100, 50, 50);
-    s.expect.push_back(build::expect_center(b, {s.bodies[b].center.x, -7.82}, build::kVisible));
-  }
-  for (int i = 0; i < 10; ++i) {
-    const std::size_t b =
-        px_box(s, build::label("high", i), BodyKind::kDynamic, 40 + 60 * i, 0, 50, 50);
-    s.expect.push_back(build::expect_center(b, {s.bodies[b].center.x, -6.82}, build::kVisible));
-  }
+  const double fall = build::fallen(kGravity, p.get("dt"), p.count("steps"));
+  auto lands_at = [&](std::size_t b, double rest) {
+    const Vec2d c = s.bodies[b].center;
+    s.expect.push_back(build::expect_center(b, {c.x, std::max(rest, c.y - fall)}, build::kVisible));
+  };
+  for (int i = 0; i < 10; ++i)
+    lands_at(px_box(s, build::label("low", i), BodyKind::kDynamic, 30 + 60 * i, 100, 50, 50),
+             -7.82);
+  for (int i = 0; i < 10; ++i)
+    lands_at(px_box(s, build::label("high", i), BodyKind::kDynamic, 40 + 60 * i, 0, 50, 50), -6.82);
   return s;
 }
 

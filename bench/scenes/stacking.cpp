@@ -86,18 +86,21 @@ Scene heavy_on_light(const SceneParams& p) {
   s.name = "heavy_on_light";
   const double size = p.get("size");
   ground(s, size + 10.0);
-  const double x = 0.5 * size - 0.5;  // the light boxes sit under the heavy box's edges
+  // The light boxes sit under the heavy box's edges, side by side at least.
+  const double x = std::max(0.5 * size - 0.5, 0.5);
   const std::size_t left = box(s, "light_left", BodyKind::kDynamic, {-x, 0.5}, {0.5, 0.5}, 1.0);
   const std::size_t right = box(s, "light_right", BodyKind::kDynamic, {x, 0.5}, {0.5, 0.5}, 1.0);
   const std::size_t heavy =
       box(s, "heavy", BodyKind::kDynamic, {0.0, 1.0 + p.get("drop") + 0.5 * size},
           {0.5 * size, 0.5 * size}, p.get("ratio"));
-  // Frictionless and upright, the heavy box lands straight down and rests on the light ones,
-  // which the floor holds where they are: its height is set by theirs, so it is judged by their
-  // size.
+  // Frictionless and upright, the heavy box falls straight down and rests on the light ones, which
+  // the floor holds where they are: its height is set by theirs, so it is judged by their size.
+  const double rest = 1.0 + 0.5 * size;
+  const double falling =
+      s.bodies[heavy].center.y - build::fallen(-s.gravity.y, p.get("dt"), p.count("steps"));
   s.expect.push_back(build::expect_moved(left, {0.0, 0.0}, build::kVisible));
   s.expect.push_back(build::expect_moved(right, {0.0, 0.0}, build::kVisible));
-  s.expect.push_back(build::expect_center(heavy, {0.0, 1.0 + 0.5 * size}, build::kVisible));
+  s.expect.push_back(build::expect_center(heavy, {0.0, std::max(rest, falling)}, build::kVisible));
   return s;
 }
 
@@ -115,7 +118,9 @@ Scene overlap_recovery(const SceneParams& p) {
   }
   // Where each box ends is not unique, but by half the run every overlap is gone and no box is
   // pushed into the floor.
-  s.expect.push_back(build::expect_no_overlap(build::kVisible, p.count("steps") / 2));
+  if (p.count("steps") >= 2) {
+    s.expect.push_back(build::expect_no_overlap(build::kVisible, p.count("steps") / 2));
+  }
   Expectation above = build::expect_bounds(build::kEvery, std::nullopt, 0.5 - build::kVisible,
                                            std::nullopt, std::nullopt);
   above.from_step = 0;

@@ -127,6 +127,7 @@ INSTANTIATE_TEST_SUITE_P(
                               "--require box2d: not among the engines run (chain)"},
                       BadCall{"run --scene stack --require chain:colour=3", "unknown key"},
                       BadCall{"run --scene stack --json /nonexistent/dir/out.json", "cannot write"},
+                      BadCall{"run --scene stack --json -", "give a file name"},
                       BadCall{"run --scene stack --set n=abc", "\"abc\" is not a number"},
                       BadCall{"run --scene stack --set n=2.5", "whole number"},
                       BadCall{"run --scene stack --set size=NaN", "not a finite number"},

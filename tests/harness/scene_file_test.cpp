@@ -262,6 +262,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"ExpectMovedWithoutTolerance",
                 edited("\"moved\": [1.6667, 0], \"tolerance\": 0.02", "\"moved\": [1.6667, 0]"),
                 "expect[3].tolerance", "is required with moved"},
+        BadFile{"DuplicateKey", edited("\"steps\": 60,", "\"steps\": 60, \"steps\": 61,"), "steps",
+                "is given twice"},
+        BadFile{"BodyNamedStar", edited("\"name\": \"wall\"", "\"name\": \"*\""), "bodies[2].name",
+                "kept for \"every dynamic body\""},
+        BadFile{"ExpectWindowHuge",
+                edited("\"from_step\": 10", "\"from_step\": 99999999999999999999"),
+                "expect[4].from_step", "must be in [0, 10000000], got 1e+20"},
         BadFile{"PenetrationToleranceZero",
                 edited("\"penetration_tolerance\": 0.02", "\"penetration_tolerance\": 0"),
                 "penetration_tolerance", "> 0"},
@@ -290,6 +297,15 @@ TEST_P(RejectedFile, NamesFilePathAndReason) {
     EXPECT_NE(msg.find(std::string(": ") + bad.path + ": "), std::string::npos) << msg;
   }
   EXPECT_NE(msg.find(bad.reason), std::string::npos) << msg;
+}
+
+// "*" means every dynamic body: a scene without any cannot use it.
+TEST(SceneFile, EveryDynamicBodyNeedsOne) {
+  const std::string msg = error_of(R"({"bodies": [{"type": "static", "center": [0, 0],
+    "half_extents": [1, 1]}], "expect": [{"body": "*", "at_rest": 0.1}]})");
+  EXPECT_NE(msg.find("expect[0].body: \"*\" names every dynamic body, and the scene has none"),
+            std::string::npos)
+      << msg;
 }
 
 TEST(SceneFile, ReportsEveryProblemNotJustTheFirst) {

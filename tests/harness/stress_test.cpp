@@ -25,8 +25,8 @@ TEST(StressMatrix, EveryCaseBuildsItsSceneWithItsRightAnswer) {
   }
 }
 
-// Known failures name real cases of the matrix, so that none hides a typo, and belong to an
-// engine's gate setting.
+// Known failures name real cases of the matrix, so that none hides a typo, each with the one
+// verdict it excuses, and belong to an engine's gate setting.
 TEST(StressMatrix, KnownFailuresNameCasesOfTheMatrix) {
   std::set<std::string> labels;
   for (const StressCase& c : stress_cases())
@@ -35,9 +35,11 @@ TEST(StressMatrix, KnownFailuresNameCasesOfTheMatrix) {
     if (!e.known_failures.empty()) {
       EXPECT_FALSE(e.gate.empty()) << e.name;
     }
-    for (const auto& [label, reason] : e.known_failures) {
-      EXPECT_EQ(labels.count(label), 1u) << label;
-      EXPECT_FALSE(reason.empty());
+    for (const EngineDef::KnownFailure& k : e.known_failures) {
+      EXPECT_EQ(labels.count(k.stress_case), 1u) << k.stress_case;
+      EXPECT_FALSE(k.reason.empty());
+      EXPECT_NE(k.verdict, "crash") << "a crash is never excused";
+      EXPECT_NE(k.verdict, "hang");
     }
   }
 }
@@ -106,6 +108,19 @@ TEST(StressVerdicts, FailureInTheChildIsAnError) {
   EXPECT_EQ(v.verdict(), VerdictClass::kError);
   EXPECT_NE(v.error.find("out of range"), std::string::npos) << v.error;
   EXPECT_TRUE(v.fatal());
+}
+
+// A known failure excuses the one verdict it names: the same case hanging or crashing still
+// fails the run.
+TEST(StressVerdicts, AKnownFailureExcusesOnlyItsOwnVerdict) {
+  const StressCase known{"deep overlap", "overlapping_pile", {"n=200"}, true};
+  const StressVerdict slow = run_stress_case(known, parse_engine_spec("chain"), 0.001);
+  ASSERT_TRUE(slow.hang);
+  EXPECT_TRUE(slow.known_failure.empty());
+  EXPECT_TRUE(slow.fatal());
+  EXPECT_FALSE(known_failure(parse_engine_spec("chain"), known.label(), "tunnelled").empty());
+  EXPECT_TRUE(known_failure(parse_engine_spec("chain"), known.label(), "crash").empty());
+  EXPECT_TRUE(known_failure(parse_engine_spec("box2d"), known.label(), "tunnelled").empty());
 }
 
 // 5,000 overlapping boxes cannot be built and stepped 300 times in 10 ms: the child is killed.

@@ -111,5 +111,35 @@ TEST(Verdicts, PeakSpeedOfAZeroRulePushIsTheSpeedTheBodiesMovedAt) {
   EXPECT_NEAR(*run(s, "chain").metrics.peak_speed, 27.0, 1e-6);
 }
 
+// Bounces bound speed by energy: a light box thrown up at three times the fall speed by a heavy
+// one is physics, and every engine that gets it right is judged right (no blow-up, stable).
+TEST(Verdicts, AnElasticTossIsNotABlowUp) {
+  const Scene s = scene("elastic_toss");
+  for (const char* engine : {"chain", "box2d", "chipmunk"}) {
+    const EngineRun r = run(s, engine);
+    EXPECT_GT(*r.metrics.peak_speed, 25.0) << engine;  // the elastic answer is 29.1 m/s
+    EXPECT_FALSE(*r.metrics.blow_up) << engine;
+    EXPECT_TRUE(*r.stable()) << engine;
+    EXPECT_TRUE(r.expect->pass) << engine;
+  }
+  EXPECT_TRUE(run(s, "chain").verdict->ok());
+}
+
+// Two crates meeting at 24 m/s end a step 0.2 m into each other; Box2D pushes them out of it
+// within a step, which moves them faster than any speed in the scene. That is a push out of an
+// overlap, reported as penetrating, not a blow-up; and all three engines land on the momentum
+// answer.
+TEST(Verdicts, PushingOutAFreshOverlapIsNotABlowUp) {
+  const Scene s = scene("head_on");
+  for (const char* engine : {"chain", "box2d", "chipmunk"}) {
+    const EngineRun r = run(s, engine);
+    EXPECT_FALSE(*r.metrics.blow_up) << engine;
+    EXPECT_TRUE(r.expect->pass) << engine << " " << r.expect->max_error;
+  }
+  const EngineRun box2d = run(s, "box2d");
+  EXPECT_GT(*box2d.metrics.peak_speed, 16.0);  // above the 16 m/s bound, within the push-out
+  EXPECT_EQ(box2d.verdict->worst, VerdictClass::kPenetrating) << box2d.verdict->str();
+}
+
 }  // namespace
 }  // namespace chainbench

@@ -12,7 +12,6 @@ import json
 import re
 import sys
 
-ENGINES = ("chain", "seed2014", "box2d")
 # Row order, and the --set key that each scaled family's size is.
 FAMILIES = {"stack": None, "pyramid": "base", "many_pyramids": None, "push_row": "n", "random_pile": "n"}
 BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
@@ -47,30 +46,44 @@ def fmt_ms(v):
 
 
 def tables(context, runs):
+    """The results table (a column per engine label, in the order the benchmarks ran them), the
+    ratio of the reference to the subject (the engines chainbench_bench names in its context),
+    the subject's scaling on random_pile and the harness' cost."""
     out = []
     order = list(FAMILIES)
+    engines = list(dict.fromkeys(engine for family, engine, size in runs if family != "harness"))
+    subject = context.get("chainbench_subject", engines[0] if engines else "")
+    reference = context.get("chainbench_reference", "")
     groups = sorted({(family, size) for family, engine, size in runs if family != "harness"},
                     key=lambda g: (order.index(g[0]) if g[0] in order else len(order), g[0], int(g[1] or 0)))
-    out.append("| scene | bodies | chain ms/step | seed2014 ms/step | box2d ms/step | box2d / chain | chain ns/body/step |")
-    out.append("|---|---:|---:|---:|---:|---:|---:|")
+    ratio_title = f" {reference} / {subject} |" if reference and reference != subject else ""
+    out.append("| scene | bodies | " + " | ".join(f"{e} ms/step" for e in engines) + " |" + ratio_title +
+               f" {subject} ns/body/step |")
+    out.append("|---|---:|" + "---:|" * len(engines) + ("---:|" if ratio_title else "") + "---:|")
     for family, size in groups:
-        row = {e: runs.get((family, e, size)) for e in ENGINES}
+        row = {e: runs.get((family, e, size)) for e in engines}
         any_run = next(b for b in row.values() if b)
         bodies = int(any_run.get("bodies", 0))
         t = {e: (ms(b) if b else None) for e, b in row.items()}
-        ratio = f"{t['box2d'] / t['chain']:.1f}x" if t["box2d"] and t["chain"] else "-"
-        per_body = f"{row['chain']['per_body'] * 1e9:.0f}" if row["chain"] and "per_body" in row["chain"] else "-"
+        cells = []
+        for e in engines:
+            degraded = row[e].get("degraded", 0) if row[e] else 0
+            cells.append(fmt_ms(t[e]) + (f" ({degraded:.0%} of steps cut short)" if degraded else ""))
+        ratio = ""
+        if ratio_title:
+            ratio = (f" {t[reference] / t[subject]:.1f}x |" if t.get(reference) and t.get(subject)
+                     else " - |")
+        sub = row.get(subject)
+        per_body = f"{sub['per_body'] * 1e9:.0f}" if sub and "per_body" in sub else "-"
         key = FAMILIES.get(family)
         label = f"`{family}` {key}={int(size):,}" if key and size else f"`{family}`"
-        hits = row["seed2014"].get("budget_hits", 0) if row["seed2014"] else 0
-        seed = fmt_ms(t["seed2014"]) + (f" ({hits:.0f} budget hits/step)" if hits else "")
-        out.append(f"| {label} | {bodies:,} | {fmt_ms(t['chain'])} | {seed} | {fmt_ms(t['box2d'])} | {ratio} | {per_body} |")
+        out.append(f"| {label} | {bodies:,} | " + " | ".join(cells) + " |" + ratio + f" {per_body} |")
 
     piles = sorted((int(size), b) for (family, engine, size), b in runs.items()
-                   if family == "random_pile" and engine == "chain" and size)
+                   if family == "random_pile" and engine == subject and size)
     if piles:
         out.append("")
-        out.append("Scaling of the chain solver on `random_pile` (time per body per step):")
+        out.append(f"Scaling of `{subject}` on `random_pile` (time per body per step):")
         out.append("")
         out.append("| bodies | ns/body/step | relative to 10k |")
         out.append("|---:|---:|---:|")
@@ -82,8 +95,9 @@ def tables(context, runs):
     bare, full = runs.get(("harness", "pyramid100", "0")), runs.get(("harness", "pyramid100", "1"))
     if bare and full:
         out.append("")
-        out.append(f"Harness cost on `pyramid` base=100: a bare chain step {ms(bare):.3f} ms; step plus reading the "
-                   f"state back and computing every metric {ms(full):.3f} ms ({ms(full) / ms(bare):.2f}x).")
+        out.append(f"Harness cost on `pyramid` base=100: a bare `{subject}` step {ms(bare):.3f} ms; step plus "
+                   f"reading the state back and computing every metric {ms(full):.3f} ms "
+                   f"({ms(full) / ms(bare):.2f}x).")
 
     cpus = context.get("num_cpus", "?")
     mhz = context.get("mhz_per_cpu", "?")

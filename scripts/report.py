@@ -77,11 +77,11 @@ def scene_section(run, plots_dir):
     runs = all_runs(run)
     has_expect = any(r.get("expect") for r in runs)
     lines += ["| engine | ms/step | x ref |" + (" expect |" if has_expect else "") +
-              " vs ref max m | vs ref rms m | EFD/body-step m | max pen m | peak m/s | resolves/step | depth | "
-              "budget hits | crushes | stable | verdict |",
-              "|---|---:|---:|" + ("---|" if has_expect else "") + "---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"]
+              " vs ref max m | vs ref rms m | EFD/body-step m | max pen m | peak m/s | stable | verdict | "
+              "the engine's counters |",
+              "|---|---:|---:|" + ("---|" if has_expect else "") + "---:|---:|---:|---:|---:|---|---|---|"]
     for r in runs:
-        m, c = r.get("metrics", {}), r.get("chain_stats")
+        m, c = r.get("metrics", {}), r.get("counters", {})
         e = errors.get(r["engine"])
         is_ref = r["engine"] == run.get("reference")
         efd = m.get("energy_free_displacement", {}).get("per_body_step")
@@ -90,10 +90,8 @@ def scene_section(run, plots_dir):
             f"{g(speedups.get(r['engine']) or (1.0 if is_ref else None))} |" +
             (f" {expect_cell(r.get('expect'))} |" if has_expect else "") +
             f" {g(e['max']) if e else ('0' if is_ref else '-')} | {g(e['rms']) if e else ('0' if is_ref else '-')} | "
-            f"{g(efd)} | {g(m.get('max_penetration'))} | {g(m.get('peak_speed'))} | "
-            f"{g(c['resolve_calls'], 4) if c else '-'} | {c['max_depth'] if c else '-'} | "
-            f"{c['budget_hits'] if c else '-'} | {c['crush_events'] if c else '-'} | {g(m.get('stable'))} | "
-            f"{verdict_cell(r)} |")
+            f"{g(efd)} | {g(m.get('max_penetration'))} | {g(m.get('peak_speed'))} | {g(m.get('stable'))} | "
+            f"{verdict_cell(r)} | {', '.join(f'{k} {g(v, 4)}' for k, v in c.items()) or '-'} |")
     lines.append("")
     ref = next((r for r in runs if r["engine"] == run.get("reference")), None)
     if has_expect:
@@ -132,24 +130,35 @@ def truth_error(run, r):
 
 
 def summary(runs):
-    lines = ["| scene | bodies | chain ms/step | box2d ms/step | box2d / chain | error against | "
-             "error m (chain / seed2014 / box2d) | verdict (chain / seed2014 / box2d) |",
-             "|---|---:|---:|---:|---:|---|---|---|"]
+    """One row per scene: each engine's time, the reference's time over the engine under test's
+    (the run marked "gate"), each engine's error against the scene's truth and its verdict. The
+    engines are the runs' own labels, in the order they ran."""
+    labels = list(dict.fromkeys(r["label"] for run in runs for r in all_runs(run)))
+    subject = next((r["label"] for run in runs for r in all_runs(run) if r.get("gate")), labels[0])
+    reference = next((r["label"] for run in runs for r in all_runs(run)
+                      if r["engine"] == run.get("reference")), None)
+    ratio_title = f" {reference} / {subject} |" if reference and reference != subject else ""
+    lines = ["| scene | bodies | " + " | ".join(f"{lb} ms/step" for lb in labels) + " |" + ratio_title +
+             " error against | error m (" + " / ".join(labels) + ") | verdict (" + " / ".join(labels) + ") |",
+             "|---|---:|" + "---:|" * len(labels) + ("---:|" if ratio_title else "") + "---|---|---|"]
     for run in runs:
-        by_name = {}
+        by_label = {}
         for r in all_runs(run):
-            by_name.setdefault(r["label"], r)
-        trio = [by_name.get("chain"), by_name.get("chain:variant=seed2014"), by_name.get("box2d")]
-        chain, _, box2d = trio
+            by_label.setdefault(r["label"], r)
+        row = [by_label.get(lb) for lb in labels]
         t = lambda r: r["ms_per_step"]["median"] if r else None  # noqa: E731
-        ratio = f"{t(box2d) / t(chain):.1f}x" if chain and box2d and t(chain) else "-"
-        errors = [truth_error(run, r) for r in trio]
+        ratio = ""
+        if ratio_title:
+            ref, sub = by_label.get(reference), by_label.get(subject)
+            ratio = f" {t(ref) / t(sub):.1f}x |" if ref and sub and t(sub) else " - |"
+        errors = [truth_error(run, r) for r in row]
         against = next((a for _, a in errors if a), "-")
         against = (f"expectations ({len(run['scene'].get('expect', []))})" if against == "expect"
                    else f"`{run.get('reference', '-')}`" if against == "ref" else "-")
-        lines.append(f"| [{run['scene']['name']}](#{run['scene']['name']}) | {run['scene']['bodies']} | "
-                     f"{g(t(chain), 4)} | {g(t(box2d), 4)} | {ratio} | {against} | "
-                     f"{' / '.join(e for e, _ in errors)} | {' / '.join(verdict_cell(r) if r else '-' for r in trio)} |")
+        lines.append(f"| [{run['scene']['name']}](#{run['scene']['name']}) | {run['scene']['bodies']} | " +
+                     " | ".join(g(t(r), 4) for r in row) + " |" + ratio + f" {against} | " +
+                     " / ".join(e for e, _ in errors) + " | " +
+                     " / ".join(verdict_cell(r) if r else "-" for r in row) + " |")
     return lines
 
 
@@ -203,12 +212,14 @@ def main():
     except OSError:
         commit = "unknown"
 
+    engines = list(dict.fromkeys(f"`{r['label']}`" for run in runs for r in all_runs(run)))
+    reference = next((r["label"] for r in all_runs(runs[0]) if r["engine"] == runs[0].get("reference")), None)
     lines = ["# chainbench report", "",
              f"Generated {datetime.datetime.now().strftime('%Y-%m-%d %H:%M')} from commit {commit} by "
-             "`scripts/run.sh`. Every scene ran in the modern chaining solver (`chain`), the 2014 variant "
-             "(`chain:variant=seed2014`) and Box2D 2.4.1 at 8/3 iterations (`box2d`, the reference of the "
-             "vs-ref columns). Each engine is judged against the right answer its scene states (its "
-             "expectations); ✗ marks an engine that misses them.", "",
+             f"`scripts/run.sh`. Every scene ran in {', '.join(engines)}"
+             + (f"; `{reference}` is the reference of the vs-ref columns" if reference else "") +
+             ". Each engine is judged against the right answer its scene states (its expectations); "
+             "✗ marks an engine that misses them.", "",
              "## Summary", ""]
     lines += summary(runs) + ["", COLUMNS, "", "## Scenes", ""]
     for run in runs:

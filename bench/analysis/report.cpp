@@ -250,6 +250,7 @@ ordered_json run_json(const RunReport& r) {
     ordered_json e;
     e["engine"] = run.engine;
     e["label"] = run.spec.label();
+    e["gate"] = is_gate(run.spec);  // the setting under test (registry.h)
     ordered_json positions = ordered_json::array();
     for (const Vec2d& p : run.final_positions)
       positions.push_back({json_number(p.x), json_number(p.y)});

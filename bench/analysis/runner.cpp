@@ -50,16 +50,38 @@ std::optional<bool> EngineRun::stable() const {
          degraded_steps == 0;
 }
 
-TraceWriter::TraceWriter(std::ostream& out) : out_(out) {
+namespace {
+
+// A CSV field: quoted, with its quotes doubled.
+std::string quoted(const std::string& text) {
+  std::string q = "\"";
+  for (const char c : text) {
+    if (c == '"') q.push_back('"');
+    q.push_back(c);
+  }
+  q.push_back('"');
+  return q;
+}
+
+}  // namespace
+
+TraceWriter::TraceWriter(std::ostream& out, const Scene& scene) : out_(out) {
   // Every digit a double holds: far from the origin six significant digits lose whole metres.
   out_.precision(std::numeric_limits<double>::max_digits10);
   out_ << "engine,step,time,body,x,y,vx,vy,angle,displacement,penetration\n";
+  for (const SceneBody& b : scene.bodies)
+    names_.push_back(quoted(b.name));
 }
 
-void TraceWriter::write(const std::string& engine, int step, double time, const BodyState& s,
+void TraceWriter::begin(const EngineSpec& spec) {
+  label_ = quoted(spec.label());
+  out_ << "# engine " << spec.label() << " = " << spec.str() << '\n';
+}
+
+void TraceWriter::write(int step, double time, const BodyState& s,
                         std::span<const double> displacement, std::span<const double> penetration) {
   for (std::size_t i = 0; i < s.position.size(); ++i) {
-    out_ << '"' << engine << "\"," << step << ',' << time << ',' << i << ',' << s.position[i].x
+    out_ << label_ << ',' << step << ',' << time << ',' << names_[i] << ',' << s.position[i].x
          << ',' << s.position[i].y << ',' << s.velocity[i].x << ',' << s.velocity[i].y << ','
          << s.angle[i] << ',' << displacement[i] << ',' << penetration[i] << '\n';
   }
@@ -85,6 +107,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     const BodyState* previous = before_state == k - 1 ? &before : nullptr;
     expect.observe(k, state, previous, deepest);
   };
+  if (options.trace) options.trace->begin(spec);
   if (every_step || expect.needs_state(0)) {
     engine->read_state(before);
     before_state = 0;
@@ -127,7 +150,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
       if (recorder) {
         recorder->observe(before, after, k, options.trace != nullptr, depth);
         if (options.trace) {
-          options.trace->write(run.engine, k, k * scene.dt, after, recorder->step_displacement(),
+          options.trace->write(k, k * scene.dt, after, recorder->step_displacement(),
                                recorder->step_penetration());
         }
         if (expect.needs_state(k)) check(k, after, depth ? &recorder->last_deepest() : nullptr);

@@ -60,15 +60,20 @@ struct EngineRun {
   std::vector<CounterDef> defs;  // what the engine counts, in the order of `counters`
 };
 
-// Receives one row per body per step: the trace CSV of `chainbench run --trace`.
+// The trace CSV of `chainbench run --trace`: one row per body per step, the engine by its label
+// and the body by its name; before an engine's rows, a comment line gives its full spec once:
+//   # engine chain = chain:variant=modern,velocity=inelastic,...
 class TraceWriter {
  public:
-  explicit TraceWriter(std::ostream& out);
-  void write(const std::string& engine, int step, double time, const BodyState& state,
-             std::span<const double> displacement, std::span<const double> penetration);
+  TraceWriter(std::ostream& out, const Scene& scene);
+  void begin(const EngineSpec& spec);
+  void write(int step, double time, const BodyState& state, std::span<const double> displacement,
+             std::span<const double> penetration);
 
  private:
   std::ostream& out_;
+  std::vector<std::string> names_;  // quoted for CSV
+  std::string label_;
 };
 
 struct RunOptions {

@@ -13,6 +13,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -91,8 +92,27 @@ void harness_benchmark(benchmark::State& state, const EngineSpec& spec) {
   state.counters["bodies"] = static_cast<double>(scene.bodies.size());
 }
 
-void register_all() {
+// Every registered engine's benchmark settings (EngineDef::benchmarks), or, with
+// --chainbench_engines=SPEC,..., those specs (a plugin, say) up to 150,000 bodies.
+std::vector<std::pair<EngineSpec, std::size_t>> benchmarked(const std::string& list) {
+  std::vector<std::pair<EngineSpec, std::size_t>> out;
+  if (!list.empty()) {
+    for (EngineSpec& spec : parse_engine_list(list))
+      out.emplace_back(std::move(spec), 150'000);
+    return out;
+  }
+  for (const EngineDef& def : engine_registry()) {
+    for (const auto& [text, max_bodies] : def.benchmarks)
+      out.emplace_back(parse_engine_spec(text), max_bodies);
+  }
+  return out;
+}
+
+void register_all(const std::string& engine_list) {
   const EngineSpec fastest = default_engines().front();
+  // What the tables compare: the engine under test and the reference, by their labels.
+  benchmark::AddCustomContext("chainbench_subject", fastest.label());
+  benchmark::AddCustomContext("chainbench_reference", default_reference().label());
   benchmark::RegisterBenchmark("harness/pyramid100/metrics",
                                [fastest](benchmark::State& s) { harness_benchmark(s, fastest); })
       ->Arg(0)
@@ -108,10 +128,10 @@ void register_all() {
       {"random_pile", "n", {1'000, 10'000, 100'000, 1'000'000}, {}, 30},
   };
   // Every engine's benchmark settings, named by their labels: pyramid/box2d/100.
+  const auto engines = benchmarked(engine_list);
   for (const Family& family : families) {
-    for (const EngineDef& def : engine_registry()) {
-      for (const auto& [text, max_bodies] : def.benchmarks) {
-        const EngineSpec spec = parse_engine_spec(text);
+    for (const auto& [spec, max_bodies] : engines) {
+      {
         auto* b = benchmark::RegisterBenchmark(
             (family.scene + "/" + spec.label()).c_str(),
             [family, spec](benchmark::State& s) { step_benchmark(s, family, spec); });
@@ -136,7 +156,26 @@ void register_all() {
 }  // namespace chainbench
 
 int main(int argc, char** argv) {
-  chainbench::register_all();
+  // --chainbench_engines=SPEC,... replaces the registered engines' settings; it is ours, not
+  // Google Benchmark's, so it is taken out of argv before benchmark::Initialize sees it.
+  std::string engines;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const std::string flag = "--chainbench_engines=";
+    if (arg.rfind(flag, 0) == 0) {
+      engines = arg.substr(flag.size());
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  try {
+    chainbench::register_all(engines);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "chainbench_bench: %s\n", e.what());
+    return 2;
+  }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
   benchmark::RunSpecifiedBenchmarks();

@@ -81,7 +81,7 @@ int run(const RunArgs& a) {
   auto trace_out = open_output(a.trace, "--trace");
   std::optional<TraceWriter> trace;
   if (trace_out) {
-    trace.emplace(*trace_out);
+    trace.emplace(*trace_out, scene);
     options.trace = &*trace;
   }
 

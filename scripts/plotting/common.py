@@ -1,23 +1,18 @@
 """What every plot of scripts/plot.py shares: the InputError that bad input raises, the late
-matplotlib import, writing a figure, reading JSON and numbers, the engine specs (parsed, shortened
-and labelled as chainbench shows them), one marker and colour per engine family, and the notes and
-point labels written on the axes.
+matplotlib import, writing a figure, reading JSON and numbers, engine labels (as chainbench writes
+them into its outputs: nothing here knows an engine's defaults), one marker and colour per engine,
+and the notes and point labels written on the axes.
 """
 import itertools
 import json
 import math
 import re
 
-# Engine defaults as bench/src/engine_spec.cpp has them, to shorten specs the way chainbench does.
-DEFAULTS = {"chain": {"variant": "modern", "velocity": "inelastic", "passes": "4", "budget": "64",
-                      "depth": "2048"},
-            "box2d": {"vel_iters": "8", "pos_iters": "3", "substeps": "1", "skin": "compensate",
-                      "warm": "1"}}
-# Marker and colour of each engine family, the same in every plot; other engines take spare colours.
-# No red among them: red crosses mark the unstable points of the sweep plots.
-FAMILY_STYLE = {"chain (modern)": ("o", "tab:blue"), "chain (seed2014)": ("s", "tab:orange"),
-                "box2d": ("^", "tab:green")}
-SPARE_COLOURS = ("tab:purple", "tab:brown", "tab:pink", "tab:olive", "tab:cyan")
+# Markers and colours, handed out in the order engines first appear. No red among them: red
+# crosses mark the unstable points of the sweep plots.
+MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*", "<", ">")
+COLOURS = ("tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown", "tab:pink", "tab:olive",
+           "tab:cyan", "tab:gray", "black")
 LINE_STYLES = ("-", "--", ":", "-.")
 
 
@@ -69,55 +64,21 @@ def number(value):
     return float(value) if ok else None
 
 
-def parse_spec(spec):
-    """(engine name, {key: value}) of a spec such as "box2d:vel_iters=8,pos_iters=3"."""
-    name, _, rest = str(spec).partition(":")
-    return name, dict(kv.partition("=")[::2] for kv in rest.split(",") if kv)
+def engine_of(label):
+    """The engine a label names: "chain" of "chain:variant=seed2014"."""
+    return str(label).partition(":")[0]
 
 
-def family(spec):
-    """The engine family of a spec: "chain (modern)", "chain (seed2014)", "box2d" or its name."""
-    name, settings = parse_spec(spec)
-    return f"chain ({settings.get('variant', 'modern')})" if name == "chain" else name
+def point_label(label):
+    """A sweep point's settings in few characters: the keys its label shows (those that differ
+    from the engine's defaults), or "defaults"."""
+    return str(label).partition(":")[2] or "defaults"
 
 
-def short_name(spec):
-    """A spec with only the keys that differ from the defaults, as chainbench's tables show it."""
-    name, settings = parse_spec(spec)
-    defaults = dict(DEFAULTS.get(name, {}))
-    if name == "chain" and settings.get("variant") == "seed2014":
-        defaults["velocity"] = "zero"
-    changed = [f"{k}={v}" for k, v in settings.items() if defaults.get(k) != v]
-    return name + (":" + ",".join(changed) if changed else "")
-
-
-def point_label(spec):
-    """A sweep point's settings in a few characters: box2d vel/pos/sub iterations, chain velocity
-    rule, passes and budget; the other keys only when not at their default."""
-    name, s = parse_spec(spec)
-    if name == "box2d":
-        base = "/".join(s.get(k, "?") for k in ("vel_iters", "pos_iters", "substeps"))
-    elif name == "chain":
-        velocity = {"inelastic": "inel"}.get(s.get("velocity"), s.get("velocity", "?"))
-        base = f"{velocity} p{s.get('passes', '?')} b{s.get('budget', '?')}"
-    else:
-        return ",".join(f"{k}={v}" for k, v in s.items())
-    others = {"box2d": ("skin", "warm"), "chain": ("depth",)}[name]
-    return " ".join([base] + [f"{k}={s[k]}" for k in others if s.get(k, DEFAULTS[name][k])
-                              != DEFAULTS[name][k]])
-
-
-def styles(keys, family_of=family):
-    """{key: (marker, colour)}: its family's for the first key of each known family, a spare
-    colour (and a diamond) for the others, so that every key has a colour of its own."""
-    out, used = {}, set()
-    for key in keys:
-        marker, colour = FAMILY_STYLE.get(family_of(key), ("D", None))
-        if colour is None or colour in used:
-            colour = next((c for c in SPARE_COLOURS if c not in used), "black")
-        out[key] = (marker, colour)
-        used.add(colour)
-    return out
+def styles(keys):
+    """{key: (marker, colour)}: a marker and a colour of its own for every key, in order."""
+    return {key: (MARKERS[k % len(MARKERS)], COLOURS[k % len(COLOURS)])
+            for k, key in enumerate(dict.fromkeys(keys))}
 
 
 def note_below(ax, lines):

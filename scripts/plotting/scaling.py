@@ -6,8 +6,6 @@ import statistics
 
 from .common import InputError, load_json, number, pyplot, save, styles
 
-# Benchmark names carry step_benchmark.cpp's engine labels, not specs; these are their families.
-BENCH_ENGINE_FAMILY = {"chain": "chain (modern)", "seed2014": "chain (seed2014)", "box2d": "box2d"}
 TIME_UNIT_MS = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
 
 
@@ -48,7 +46,7 @@ def plot_scaling(path, bench, out_dir, svg):
     scenes = list(dict.fromkeys(scene for scene, _ in series))
     marker = {s: "osD^vPX*<>ph"[i % 12] for i, s in enumerate(scenes)}
     multi = {s for (s, _), pts in series.items() if len({b for b, _ in pts}) > 1}
-    engines = styles(dict.fromkeys(e for _, e in series), lambda e: BENCH_ENGINE_FAMILY.get(e, e))
+    engines = styles(e for _, e in series)  # benchmark names carry the engines' labels
     fig, ax = plt.subplots(figsize=(10, 6.5))
     fig.subplots_adjust(left=0.09, right=0.74, top=0.88, bottom=0.12)
     for (scene, engine), pts in series.items():

@@ -4,7 +4,7 @@ reference run) drawn over each other, so that where the engines disagree shows a
 import math
 
 from .common import (LINE_STYLES, InputError, file_stem, load_json, note_below, number, pyplot,
-                     save, short_name, styles)
+                     save, styles)
 
 
 def load_run(path):
@@ -24,7 +24,7 @@ def load_run(path):
         pos, angles = r["final_positions"], r.get("final_angles")
         if len(pos) != n or (angles is not None and len(angles) != n):
             raise InputError(f"{path}: {r['engine']}: not one final position (angle) per body")
-        out.append((str(r["engine"]), is_ref, [(number(x), number(y)) for x, y in pos],
+        out.append((str(r.get("label") or r["engine"]), is_ref, [(number(x), number(y)) for x, y in pos],
                     None if angles is None else [number(a) for a in angles]))
     if not out:
         raise InputError(f"{path}: no runs")
@@ -76,7 +76,7 @@ def plot_states(path, run, out_dir, svg):
         ax.add_collection(PolyCollection(boxes, facecolors=to_rgba(c, 0.1), edgecolors=c, lw=lw,
                                          linestyles=ls, zorder=2 + z))
         handles.append(Patch(facecolor=to_rgba(c, 0.1), edgecolor=c, lw=1.5, ls=ls,
-                             label=short_name(engine) + " (reference)" * is_ref))
+                             label=engine + " (reference)" * is_ref))
     ax.set(xlim=(x0, x1), ylim=(y0, y1), xlabel="x (m)", ylabel="y (m)")
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(True, alpha=0.2)

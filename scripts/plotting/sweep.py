@@ -4,26 +4,23 @@ engine setting against its time per step, with the Pareto front and the referenc
 import math
 import sys
 
-from .common import (InputError, family, file_stem, load_json, note_below, number, parse_spec,
-                     place_labels, point_label, pyplot, save, short_name, styles)
-
-# What the point labels (common.point_label) show, per engine, for the note under each plot.
-LABEL_NOTES = {"box2d": "box2d vel/pos/sub iterations",
-               "chain": "chain velocity rule, p = passes, b = budget"}
+from .common import (InputError, engine_of, file_stem, load_json, note_below, number, place_labels,
+                     point_label, pyplot, save, styles)
 
 
 def load_sweep(path):
-    """The scenes of a chainbench.sweep/1 JSON, each a dict with name, bodies, steps, reference,
-    reference_ms, interrupted and points: dicts of engine, ms, rms (None if not finite), stable
-    and pareto."""
+    """The scenes of a chainbench.sweep/1 JSON, each a dict with name, bodies, steps, reference
+    (its label, or "expect"), reference_ms, interrupted and points: dicts of label, ms, rms (None
+    if not finite), stable and pareto."""
     data = load_json(path, "chainbench.sweep/1")
     if not isinstance(data.get("scenes"), list) or not data["scenes"]:
         raise InputError(f"{path}: no scenes")
     return [{"name": str(s["scene"]["name"]), "bodies": s["scene"].get("bodies", "?"),
-             "steps": s["scene"].get("steps", "?"), "reference": s.get("reference"),
+             "steps": s["scene"].get("steps", "?"),
+             "reference": s.get("reference_label") or s.get("reference"),
              "reference_ms": number(s.get("reference_ms_per_step")),
              "interrupted": s.get("interrupted") is True,
-             "points": [{"engine": str(p["engine"]), "ms": number(p["ms_per_step"]),
+             "points": [{"label": str(p.get("label") or p["engine"]), "ms": number(p["ms_per_step"]),
                          "rms": number(p["final_position_error"]["rms"]),
                          "stable": p.get("stable"), "pareto": p.get("pareto") is True}
                         for p in s["points"]]}
@@ -31,8 +28,8 @@ def load_sweep(path):
 
 
 def plot_sweep(path, scenes, out_dir, svg):
-    """Per scene: final-position RMS error against ms/step, log-log, one series per engine family,
-    each point labelled with its settings, the Pareto front as a step line and the reference
+    """Per scene: final-position RMS error against ms/step, log-log, one series per engine, each
+    point labelled with the settings its label shows, the Pareto front as a step line and the reference
     engine's time per step as a dotted vertical line. Unstable points are crossed in red. Scenes
     whose names make the same file stem are written as sweep_STEM, sweep_STEM_2, sweep_STEM_3..."""
     for scene in scenes:
@@ -48,12 +45,10 @@ def plot_sweep(path, scenes, out_dir, svg):
             print(f"plot.py: {path}: scene {name!r} has no point with a time and an error; skipped",
                   file=sys.stderr)
             continue
-        engines = {parse_spec(p["engine"])[0] for p in usable}
-        legend = [text for engine, text in LABEL_NOTES.items() if engine in engines]
-        notes = ["point labels: " + "; ".join(legend)] if legend else []
+        notes = ["point labels: the settings that differ from the engine's defaults"]
         if len(usable) < len(scene["points"]):
             notes.append("not drawn, no time or error: " + ", ".join(
-                short_name(p["engine"]) for p in scene["points"] if p not in usable))
+                p["label"] for p in scene["points"] if p not in usable))
         positive = [p["rms"] for p in usable if p["rms"] > 0]
         floor = 10.0 ** math.floor(math.log10(min(positive) / 10)) if positive else 1e-12
         if len(positive) < len(usable):
@@ -64,13 +59,13 @@ def plot_sweep(path, scenes, out_dir, svg):
         fig.subplots_adjust(left=0.09, right=0.74, top=0.88, bottom=0.16)
         families, labels = {}, []
         for p in usable:
-            families.setdefault(family(p["engine"]), []).append(p)
-        for fam, (marker, colour) in styles(families, family_of=str).items():
+            families.setdefault(engine_of(p["label"]), []).append(p)
+        for fam, (marker, colour) in styles(families).items():
             pts = families[fam]
             ax.scatter([p["ms"] for p in pts], [p["y"] for p in pts], marker=marker, s=36, zorder=3,
                        facecolors=[colour if p["rms"] > 0 else "none" for p in pts],
                        edgecolors=colour, label=f"{fam} ({len(pts)})")
-            labels += [(p["ms"], p["y"], point_label(p["engine"]), colour) for p in pts]
+            labels += [(p["ms"], p["y"], point_label(p["label"]), colour) for p in pts]
         unstable = [(p["ms"], p["y"]) for p in usable if p["stable"] is False]
         if unstable:
             ax.scatter(*zip(*unstable), marker="x", s=70, color="red", zorder=4,
@@ -85,7 +80,7 @@ def plot_sweep(path, scenes, out_dir, svg):
                ylabel="final-position error, RMS over dynamic bodies (m, log scale)")
         ax.grid(True, alpha=0.3)
         against = ("the scene's expected final centres" if ref == "expect"
-                   else f"reference {short_name(ref)}" if ref else "an unnamed reference")
+                   else f"reference {ref}" if ref else "an unnamed reference")
         ax.set_title(f"{name}: {scene['bodies']} bodies, {scene['steps']} steps"
                      f"{' (interrupted)' * scene['interrupted']}\nerror against {against}",
                      fontsize=11)

@@ -4,7 +4,7 @@ penetration of each step over simulated time, one line per engine.
 import csv
 import math
 
-from .common import LINE_STYLES, InputError, file_stem, note_below, pyplot, save, short_name, styles
+from .common import LINE_STYLES, InputError, file_stem, note_below, pyplot, save, styles
 
 
 def load_trace(path):
@@ -14,7 +14,8 @@ def load_trace(path):
     per_engine, skipped, line, key, acc = {}, 0, 1, None, None
     try:
         with open(path, newline="", encoding="utf-8") as f:
-            reader = csv.reader(f)
+            # Lines starting with # name each engine's full spec once; the rows carry its label.
+            reader = csv.reader(line for line in f if not line.startswith("#"))
             header = next(reader, None)  # None if the file is empty, [] if its first line is blank
             if not header:
                 raise InputError(f"{path}: " + ("empty file" if header is None else "no header "
@@ -57,7 +58,7 @@ def plot_trace(path, trace, out_dir, svg, name):
         rows = [steps[s] for s in sorted(steps)]
         for ax, col in zip(axes, (1, 2)):
             ax.plot([r[0] for r in rows], [r[col] for r in rows], color=colours[engine][1],
-                    ls=LINE_STYLES[k % 4], lw=1.4, label=short_name(engine))
+                    ls=LINE_STYLES[k % 4], lw=1.4, label=engine)
     for ax, col in zip(axes, (1, 2)):
         values = [r[col] for steps in per_engine.values() for r in steps.values()]
         ax.set_yscale("log" if min(values) > 0 and max(values) > 100 * min(values) else "linear")

@@ -96,7 +96,7 @@ TEST(Cli, CsvAndTraceAreWritten) {
   int lines = 0;
   for (std::string l; std::getline(trace, l);)
     ++lines;
-  EXPECT_EQ(lines, 1 + 10 * 3);
+  EXPECT_EQ(lines, 2 + 10 * 3);  // header, the spec line, 10 steps of 3 bodies
 }
 
 struct BadCall {

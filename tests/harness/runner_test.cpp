@@ -55,21 +55,26 @@ TEST(Runner, ExpectationsPassOrFailPerEngine) {
   EXPECT_GT(inelastic.expect->max_error, 0.1);
 }
 
-TEST(Runner, TraceHasARowPerBodyPerStep) {
+// A row per body per step, the engine by its label and the body by its name, and the engine's
+// full spec once, on a comment line before its rows.
+TEST(Runner, TraceHasARowPerBodyPerStepAndTheSpecOnce) {
   const Scene s = make_scene("squeeze", {"steps=5"});
   std::ostringstream out;
-  TraceWriter trace(out);
+  TraceWriter trace(out, s);
   RunOptions options;
   options.trace = &trace;
-  run_engine(s, parse_engine_spec("chain"), options);
+  run_engine(s, parse_engine_spec("chain:velocity=zero"), options);
   std::istringstream in(out.str());
   std::string line;
-  int rows = -1;  // the header
+  std::vector<std::string> lines;
   while (std::getline(in, line))
-    ++rows;
-  EXPECT_EQ(rows, 5 * 3);
-  EXPECT_EQ(out.str().rfind("engine,step,time,body,x,y,vx,vy,angle,displacement,penetration\n", 0),
-            0u);
+    lines.push_back(line);
+  ASSERT_EQ(lines.size(), 2u + 5 * 3);  // header, spec, 5 steps of 3 bodies
+  EXPECT_EQ(lines[0], "engine,step,time,body,x,y,vx,vy,angle,displacement,penetration");
+  EXPECT_EQ(lines[1],
+            "# engine chain:velocity=zero = " + parse_engine_spec("chain:velocity=zero").str());
+  EXPECT_EQ(lines[2].rfind("\"chain:velocity=zero\",1,", 0), 0u) << lines[2];
+  EXPECT_NE(lines[3].find(",\"box\","), std::string::npos) << lines[3];  // body 1, by name
 }
 
 TEST(Runner, SameSceneSameEngineSameBits) {

@@ -22,12 +22,24 @@ PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 MODERN = "chain:variant=modern,velocity=inelastic,passes=4,budget=64,depth=2048"
 SEED = "chain:variant=seed2014,velocity=zero,passes=4,budget=64,depth=2048"
 BOX2D = "box2d:vel_iters={},pos_iters=3,substeps={},skin=compensate,warm=1"
+# The labels chainbench writes beside each spec: the plots read these, never the specs' defaults.
+LABELS = {MODERN: "chain", SEED: "chain:variant=seed2014",
+          MODERN.replace("passes=4", "passes=1"): "chain:passes=1"}
+
+
+def label(spec):
+    """The label chainbench writes for one of the specs above."""
+    if spec in LABELS:
+        return LABELS[spec]
+    v, s = spec.split("vel_iters=")[1].split(",")[0], spec.split("substeps=")[1].split(",")[0]
+    keys = ([f"vel_iters={v}"] if v != "8" else []) + ([f"substeps={s}"] if s != "1" else [])
+    return "box2d" + (":" + ",".join(keys) if keys else "")
 
 
 def sweep_point(engine, ms, rms, pareto=False, stable=True):
-    return {"engine": engine, "ms_per_step": ms, "final_position_error": {"max": rms, "rms": rms},
-            "energy_free_displacement": 1e-6, "max_penetration": 1e-4, "stable": stable,
-            "pareto": pareto}
+    return {"engine": engine, "label": label(engine), "ms_per_step": ms,
+            "final_position_error": {"max": rms, "rms": rms}, "energy_free_displacement": 1e-6,
+            "max_penetration": 1e-4, "stable": stable, "pareto": pareto}
 
 
 def sweep_json():
@@ -79,7 +91,8 @@ def bench_json():
 def run_json():
     """A ground, a kinematic pusher and three boxes, two engines, a reference run and angles."""
     def run(engine, dx, angle):
-        return {"engine": engine, "final_positions": [[0, -1], [-3, 0.5], [dx, 0.5], [dx + 1, 0.5],
+        return {"engine": engine, "label": label(engine),
+                "final_positions": [[0, -1], [-3, 0.5], [dx, 0.5], [dx + 1, 0.5],
                                                        [dx + 0.5, 1.5]],
                 "final_angles": [0, 0, 0, angle, -angle], "ms_per_step": {"median": 0.01},
                 "metrics": {"stable": True}}
@@ -94,13 +107,14 @@ def run_json():
 
 
 def trace_csv():
-    """Two engines (quoted specs with commas), 30 steps of three bodies; the values span several
-    decades (a log axis)."""
+    """Two engines, each spec once on a comment line and its label on every row, 30 steps of three
+    named bodies; the values span several decades (a log axis)."""
     lines = ["engine,step,time,body,x,y,vx,vy,angle,displacement,penetration"]
     for engine, scale in ((MODERN, 1e-3), (BOX2D.format(8, 1), 1.0)):
+        lines.append(f"# engine {label(engine)} = {engine}")
         for step in range(1, 31):
             for body in range(3):
-                lines.append(f'"{engine}",{step},{step / 60:.6g},{body},0,{body},0,0,0,'
+                lines.append(f'"{label(engine)}",{step},{step / 60:.6g},"box {body}",0,{body},0,0,0,'
                              f"{scale * 1e-3 / step},{scale * 10.0 ** -(step % 5)}")
     return "\n".join(lines) + "\n"
 
@@ -196,7 +210,7 @@ class PlotTest(unittest.TestCase):
         self.assertEqual(sorted(p.name for p in out.iterdir()), sorted(f"{s}.png" for s in stems))
 
     def test_sweep_note(self):
-        """The note on point labels explains only the engine families that the scene has."""
+        """Points are labelled with the settings their labels show, and the note says so."""
         sweep = {"schema": "chainbench.sweep/1", "scenes": [
             {"scene": {"name": "s", "bodies": 3, "steps": 60}, "reference": "expect",
              "points": [sweep_point(MODERN, 0.001, 0.3), sweep_point(SEED, 0.002, 0.2)]}]}
@@ -205,8 +219,10 @@ class PlotTest(unittest.TestCase):
         fig = self.drawn("sweep", "plot_sweep", path, sweep_module.load_sweep(path),
                          self.dir / "unused", False)
         text = "\n".join(t.get_text() for t in fig.axes[0].texts)
-        self.assertIn("p = passes", text)
-        self.assertNotIn("box2d", text)
+        self.assertIn("the settings that differ from the engine's defaults", text)
+        self.assertIn("defaults", text)
+        self.assertIn("variant=seed2014", text)
+        self.assertNotIn("depth=2048", text)  # the spec's defaults are not restated
 
     def test_states_no_dynamic_body(self):
         """No dynamic body: each body is drawn once, in grey, and all of them are in view."""
@@ -251,26 +267,23 @@ class PlotTest(unittest.TestCase):
     def test_trace_aggregation(self):
         per_engine, skipped = plotting("trace").load_trace(self.dir / "tr.csv")
         self.assertEqual(skipped, 0)
-        self.assertEqual(list(per_engine), [MODERN, BOX2D.format(8, 1)])
-        time, displacement, penetration = per_engine[BOX2D.format(8, 1)][2]
+        self.assertEqual(list(per_engine), ["chain", "box2d"])
+        time, displacement, penetration = per_engine["box2d"][2]
         self.assertAlmostEqual(time, 2 / 60, places=5)
         self.assertAlmostEqual(displacement, 3 * 1e-3 / 2)
         self.assertAlmostEqual(penetration, 1e-2)
 
-    def test_names(self):
+    def test_labels(self):
+        """Labels come from chainbench's outputs; the plots only split them."""
         plot = plotting("common")
-        self.assertEqual(plot.short_name(MODERN), "chain")
-        self.assertEqual(plot.short_name(SEED), "chain:variant=seed2014")
-        self.assertEqual(plot.short_name(BOX2D.format(20, 1)), "box2d:vel_iters=20")
-        self.assertEqual(plot.point_label(BOX2D.format(4, 2)), "4/3/2")
-        self.assertEqual(plot.point_label(BOX2D.format(8, 1).replace("compensate", "raw")),
-                         "8/3/1 skin=raw")
-        self.assertEqual(plot.point_label(MODERN.replace("passes=4", "passes=1")), "inel p1 b64")
-        self.assertEqual(plot.family(SEED), "chain (seed2014)")
+        self.assertEqual(plot.engine_of("chain:variant=seed2014"), "chain")
+        self.assertEqual(plot.engine_of("plugin:path=librelaxation.so,iterations=4"), "plugin")
+        self.assertEqual(plot.point_label("box2d:vel_iters=4,substeps=2"), "vel_iters=4,substeps=2")
+        self.assertEqual(plot.point_label("box2d"), "defaults")
 
     def test_colours(self):
         """No engine is drawn in red, the colour of the sweep plots' unstable crosses."""
-        colours = plotting("common").styles([f"engine{i}" for i in range(12)], family_of=str)
+        colours = plotting("common").styles([f"engine{i}" for i in range(12)])
         self.assertFalse([c for _, c in colours.values() if "red" in c], colours)
 
     def test_help(self):

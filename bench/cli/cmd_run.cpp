@@ -8,6 +8,7 @@
 #include "runner.h"
 #include "scene_file.h"
 #include "scene_library.h"
+#include "trace_writer.h"
 #include "verdict.h"
 
 #include <algorithm>
@@ -82,7 +83,7 @@ int run(const RunArgs& a) {
   std::optional<TraceWriter> trace;
   if (trace_out) {
     trace.emplace(*trace_out, scene);
-    options.trace = &*trace;
+    options.observers.push_back(&*trace);
   }
 
   Progress progress;

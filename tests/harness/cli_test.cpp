@@ -93,10 +93,20 @@ TEST(Cli, CsvAndTraceAreWritten) {
   std::getline(csv, row);
   EXPECT_EQ(header.rfind("scene,engine,bodies,steps", 0), 0u);
   EXPECT_EQ(row.rfind("squeeze,\"chain:variant=modern", 0), 0u) << row;
-  int lines = 0;
-  for (std::string l; std::getline(trace, l);)
-    ++lines;
-  EXPECT_EQ(lines, 2 + 10 * 3);  // header, the spec line, 10 steps of 3 bodies
+  int comments = 0, lift = 0, others = 0;
+  std::getline(trace, header);
+  EXPECT_EQ(header, "engine,step,body,x,y,vx,vy,angle,displacement,penetration");
+  for (std::string l; std::getline(trace, l);) {
+    if (l.rfind('#', 0) == 0) {
+      ++comments;
+    } else {
+      (l.find(",lift,") != std::string::npos ? lift : others)++;
+    }
+  }
+  EXPECT_EQ(comments, 4);  // the format, dt, steps, the engine's spec
+  // The lift descends every step; the ground and the box stay put and are written once.
+  EXPECT_EQ(lift, 10);
+  EXPECT_EQ(others, 2);
 }
 
 struct BadCall {

@@ -228,15 +228,17 @@ ordered_json run_json(const RunReport& r) {
   if (!s.description.empty()) j["scene"]["description"] = s.description;
   // Sizes and kinds in scene order, so that tools can draw the final states.
   ordered_json half = ordered_json::array(), kinds = ordered_json::array();
-  ordered_json names = ordered_json::array();
+  ordered_json names = ordered_json::array(), centers = ordered_json::array();
   for (const SceneBody& b : s.bodies) {
     half.push_back({b.half_extents.x, b.half_extents.y});
     kinds.push_back(to_string(b.kind));
     names.push_back(b.name);
+    centers.push_back({b.center.x, b.center.y});
   }
   j["scene"]["half_extents"] = std::move(half);
   j["scene"]["kinds"] = std::move(kinds);
   j["scene"]["names"] = std::move(names);
+  j["scene"]["centers"] = std::move(centers);  // as built
   if (!s.expect.empty()) {
     j["scene"]["expect"] = ordered_json::array();
     for (const Expectation& e : s.expect)

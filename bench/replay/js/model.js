@@ -87,38 +87,41 @@ class ReplayModel {
     return this.byName.has(body) ? this.byName.get(body) : -1;
   }
 
-  // What "fit" shows: every body that can move, as built and at its final centres, and the
-  // static bodies near them (a floor 1 km wide is cut to the part around them).
+  // What "fit" shows: every body that can move, as built and at its final centres, and every
+  // static body, a side longer than three times theirs cut to a band around them (a floor 1 km
+  // wide shows as wide as they are, plus as much on each side); every body when none can move.
   extent() {
     const box = { x0: Infinity, y0: Infinity, x1: -Infinity, y1: -Infinity };
-    const grow = (b, x0, y0, x1, y1) => {
+    const grow = (x0, y0, x1, y1) => {
       if (![x0, y0, x1, y1].every(Number.isFinite) || x0 > x1 || y0 > y1) return;
-      b.x0 = Math.min(b.x0, x0); b.y0 = Math.min(b.y0, y0);
-      b.x1 = Math.max(b.x1, x1); b.y1 = Math.max(b.y1, y1);
+      box.x0 = Math.min(box.x0, x0); box.y0 = Math.min(box.y0, y0);
+      box.x1 = Math.max(box.x1, x1); box.y1 = Math.max(box.y1, y1);
     };
-    const growBody = (b, i, p) => {
-      if (p) grow(b, p[0] - this.half[2 * i], p[1] - this.half[2 * i + 1],
+    const growBody = (i, p) => {
+      if (p) grow(p[0] - this.half[2 * i], p[1] - this.half[2 * i + 1],
                   p[0] + this.half[2 * i], p[1] + this.half[2 * i + 1]);
     };
     for (let i = 0; i < this.count; i++) {
       if (this.kinds[i] === KIND_STATIC) continue;
-      growBody(box, i, this.position(0, i, 0));
-      this.engines.forEach((e, k) => growBody(box, i, this.position(k, i, this.steps)));
+      growBody(i, this.position(0, i, 0));
+      this.engines.forEach((e, k) => growBody(i, this.position(k, i, this.steps)));
     }
-    if (!Number.isFinite(box.x0)) {  // nothing moves: every body
-      for (let i = 0; i < this.count; i++) growBody(box, i, this.position(0, i, 0));
+    if (!Number.isFinite(box.x0)) {
+      for (let i = 0; i < this.count; i++) growBody(i, this.position(0, i, 0));
       return Number.isFinite(box.x0) ? box : { x0: -1, y0: -1, x1: 1, y1: 1 };
     }
-    const w = box.x1 - box.x0, h = box.y1 - box.y0;
-    const near = { x0: box.x0 - w, y0: box.y0 - h, x1: box.x1 + w, y1: box.y1 + h };
-    const all = Object.assign({}, box);
+    const moving = Object.assign({}, box);
+    const w = moving.x1 - moving.x0, h = moving.y1 - moving.y0;
+    const cut = (lo, hi, a, b, size) => hi - lo > 3 * size ? [Math.max(lo, a - size), Math.min(hi, b + size)]
+                                                           : [lo, hi];
     for (let i = 0; i < this.count; i++) {
       if (this.kinds[i] !== KIND_STATIC) continue;
       const x = this.centers[2 * i], y = this.centers[2 * i + 1];
       const hx = this.half[2 * i], hy = this.half[2 * i + 1];
-      grow(all, Math.max(x - hx, near.x0), Math.max(y - hy, near.y0),
-           Math.min(x + hx, near.x1), Math.min(y + hy, near.y1));
+      const [sx0, sx1] = cut(x - hx, x + hx, moving.x0, moving.x1, w);
+      const [sy0, sy1] = cut(y - hy, y + hy, moving.y0, moving.y1, h);
+      grow(sx0, sy0, sx1, sy1);
     }
-    return all;
+    return box;
   }
 }

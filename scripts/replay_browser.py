@@ -173,7 +173,9 @@ def main(argv=None):
                 print(f"{page}: {r['bytes'] / 1e6:.2f} MB, opened in {r['open_s']:.2f} s, "
                       f"{r['steps']} steps played at {args.speed:g}x in {r['play_s']:.2f} s; "
                       f"{f['frames']} frames drawn in {f['draw_ms']['mean']:.1f} ms on average "
-                      f"(p95 {f['draw_ms']['p95']:.1f}, max {f['draw_ms']['max']:.1f})")
+                      f"(p95 {f['draw_ms']['p95']:.1f}, max {f['draw_ms']['max']:.1f}), "
+                      f"{f['interval_ms']['mean']:.0f} ms between frames on average "
+                      f"(p95 {f['interval_ms']['p95']:.0f})")
     except BrowserError as e:
         print(f"replay_browser.py: {e}", file=sys.stderr)
         return 2

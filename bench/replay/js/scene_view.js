@@ -58,7 +58,17 @@ class SceneView {
     this.drawGrid();
     this.drawFixed(step);
     const order = this.model.engines.map((e, k) => k).filter((k) => this.shown[k]);
-    order.forEach((k, z) => this.drawEngine(k, step, 1 + 2 * (order.length - 1 - z)));
+    // Lower engines get wider outlines, so that boxes in one place still show every engine;
+    // with thousands of boxes in view, thin outlines and no fill keep a frame cheap to raster.
+    const crowded = this.visibleDynamic() * order.length > 4000;
+    order.forEach((k, z) => this.drawEngine(k, step, crowded ? 1 : 1 + 2 * (order.length - 1 - z),
+                                            !crowded));
+    if (crowded) {
+      ctx.fillStyle = "#5b6470";
+      ctx.font = "11px system-ui, sans-serif";
+      ctx.fillText("crowded view: 1-pixel outlines, the last engine on top; zoom in or untick " +
+                   "engines to compare them", 8, 14);
+    }
     this.drawExpectations(step);
     this.drawMarks(step);
     if (hover !== null && hover !== undefined) this.drawHover(hover, step);
@@ -114,7 +124,19 @@ class SceneView {
     }
   }
 
-  drawEngine(k, step, width) {
+  // The dynamic bodies in view as built: how crowded the view is.
+  visibleDynamic() {
+    const m = this.model, v = this.camera.visible();
+    let n = 0;
+    for (let i = 0; i < m.count; i++) {
+      if (m.kinds[i] !== KIND_DYNAMIC) continue;
+      const x = m.centers[2 * i], y = m.centers[2 * i + 1];
+      n += x >= v.x0 && x <= v.x1 && y >= v.y0 && y <= v.y1;
+    }
+    return n;
+  }
+
+  drawEngine(k, step, width, fill) {
     const ctx = this.ctx, m = this.model;
     ctx.beginPath();
     for (let i = 0; i < m.count; i++) {
@@ -123,8 +145,10 @@ class SceneView {
       if (p) this.addBox(i, p);
     }
     const colour = engineColour(k);
-    ctx.fillStyle = "rgba(" + rgbOf(colour) + ",0.07)";
-    ctx.fill();
+    if (fill) {
+      ctx.fillStyle = "rgba(" + rgbOf(colour) + ",0.07)";
+      ctx.fill();
+    }
     ctx.strokeStyle = colour;
     ctx.lineWidth = width;
     ctx.stroke();

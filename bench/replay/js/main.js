@@ -22,7 +22,7 @@ function show(step) {
   chart.draw(step);
   slider.value = step;
   readout.textContent = "step " + step + " / " + model.steps + "  (t = " +
-      (step * model.dt).toFixed(3) + " s)" + (model.isExact(step) ? "" : "");
+      (step * model.dt).toFixed(3) + " s)";
   if (eventRows.length <= 500) {
     for (const row of eventRows) {
       const now = step >= row.item.step && step <= row.item.step + marks.failHold;

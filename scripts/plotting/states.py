@@ -220,7 +220,7 @@ def plot_states(path, run, out_dir, svg):
                                          linestyles=ls, zorder=2 + z))
         handles.append(Patch(facecolor=to_rgba(c, 0.1), edgecolor=c, lw=1.5, ls=ls,
                              label=engine + " (reference)" * is_ref))
-    targets, bounds = expected_marks(scene)
+    targets, bounds, left_out = expected_marks(scene)
     for t in targets:
         ax.plot([t["x"]], [t["y"]], marker="x", color="black", ms=5, mew=1, zorder=30, ls="none")
         if t["tolerance"] > 0:
@@ -246,11 +246,14 @@ def plot_states(path, run, out_dir, svg):
                  f"steps{duration}, {len(kinds)} bodies", fontsize=11)
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1), fontsize=8,
               title="engine", handlelength=3)
+    notes = ([f"{dropped} box(es) with a non-finite position not drawn"] * bool(dropped)
+             + ["no dynamic body: only the static and kinematic ones are drawn"] * (not dynamic)
+             + [f"expected centres of {', '.join(left_out)} not crossed: too many" +
+                (", see (b)" if panel else "")] * bool(left_out))
     if panel:
         plot_per_body(bx, scene, values, origin, dyn, colours)
-    fig.tight_layout()
+    fig.tight_layout(h_pad=1.0 + 1.2 * len(notes))  # room for the notes between the panels
     fig.canvas.draw()  # the final layout, so that names are placed where they fit
     name_bodies(ax, scene, runs)
-    note_below(ax, [f"{dropped} box(es) with a non-finite position not drawn"] * bool(dropped)
-               + ["no dynamic body: only the static and kinematic ones are drawn"] * (not dynamic))
+    note_below(ax, notes)
     save(fig, out_dir, f"states_{file_stem(scene.get('name', 'unnamed'))}", svg)

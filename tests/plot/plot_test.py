@@ -304,10 +304,15 @@ class PlotTest(unittest.TestCase):
                              "from_step": 3, "to_step": 9},
                             {"kind": "bounds", "body": "b", "min": [0, None], "max": [2, None]},
                             {"kind": "no_overlap", "no_overlap": 0.01}]}
-        targets, bounds = plotting("expected").expected_marks(scene)
+        targets, bounds, left_out = plotting("expected").expected_marks(scene)
         self.assertEqual([(t["x"], t["y"], t["body"], t["final"]) for t in targets],
                          [(5, 6, 1, True), (2, 2, 1, False), (4, 4, 2, False)])
         self.assertEqual(bounds, [(0, 0, "expect[2] b: 0 <= x <= 2"), (0, 2, "")])
+        self.assertEqual(left_out, [])
+        # A "*" entry over more bodies than the limit is left out whole, and named.
+        targets, _, left_out = plotting("expected").expected_marks(scene, limit=1)
+        self.assertEqual([t["body"] for t in targets], [1])
+        self.assertEqual(left_out, ["expect[1] (2 bodies)"])
         del scene["centers"]  # an older run JSON: moved entries cannot be placed
         self.assertEqual(len(plotting("expected").expected_marks(scene)[0]), 1)
 

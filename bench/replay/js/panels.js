@@ -79,6 +79,10 @@ function bodyTooltip(model, shown, body, step) {
   const rows = [];
   const base = model.reference !== null ? model.reference : 0;
   const basePosition = model.position(base, body, step);
+  // Exact centres (as built, after the last step) with twelve significant digits, stored ones
+  // to the quantum's digits.
+  const coordinate = (v) => !model.isExact(step) ? formatCoordinate(v, model.quantum)
+      : Number.isFinite(v) ? String(Number(v.toPrecision(12))) : "lost";
   model.engines.forEach((e, k) => {
     if (!shown[k]) return;
     const p = model.position(k, body, step);
@@ -86,8 +90,7 @@ function bodyTooltip(model, shown, body, step) {
         ? formatNumber(Math.hypot(p[0] - basePosition[0], p[1] - basePosition[1]), 3) + " m" : "";
     rows.push("<tr><td><span class=\"swatch\" style=\"border-color:" + engineColour(k) +
               ";width:8px\"></span> " + escapeHtml(e.label) + "</td><td>" +
-              (p ? "(" + formatCoordinate(p[0], model.quantum) + ", " +
-                   formatCoordinate(p[1], model.quantum) + ")" : "lost") +
+              (p ? "(" + coordinate(p[0]) + ", " + coordinate(p[1]) + ")" : "lost") +
               "</td><td>" + distance + "</td></tr>");
   });
   const exact = model.isExact(step) ? "exact" : "stored to within " +

@@ -127,7 +127,7 @@ void register_all(const std::string& engine_list) {
       {"push_row", "n", {100, 10'000}, {}, 30},
       {"random_pile", "n", {1'000, 10'000, 100'000, 1'000'000}, {}, 30},
   };
-  // Every engine's benchmark settings, named by their labels: pyramid/box2d/100.
+  // Every engine's benchmark settings, named by their labels: pyramid/LABEL/100.
   const auto engines = benchmarked(engine_list);
   for (const Family& family : families) {
     for (const auto& [spec, max_bodies] : engines) {

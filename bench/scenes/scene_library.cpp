@@ -49,7 +49,7 @@ std::vector<SceneParam> all_params(const SceneRecipe& recipe) {
   params.push_back(
       {"friction", 0.0, 0, limits::kMaxFriction, false, "friction of every body (chain has none)"});
   params.push_back({"restitution", 0.0, 0, 1, false, "restitution of every body"});
-  params.push_back({"rotation", 0.0, 0, 1, true, "1: let Box2D rotate bodies (chain never does)"});
+  params.push_back({"rotation", 0.0, 0, 1, true, "1: let bodies rotate, in engines that can"});
   params.push_back(
       {"offset", 0.0, -1e7, 1e7, false, "move the whole scene this far along x and y, m"});
   return params;

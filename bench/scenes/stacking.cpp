@@ -27,7 +27,8 @@ Scene stack(const SceneParams& p) {
   return s;
 }
 
-// Rows of touching boxes, each row centred on the one below (Box2D v3's large_pyramid layout).
+// Rows of touching boxes, each row centred on the one below: the layout 2D engine benchmarks call
+// the large pyramid.
 void add_pyramid(Scene& s, const std::string& prefix, int base, double size, double x0, double y0) {
   const double h = 0.5 * size;
   for (int row = 0; row < base; ++row) {
@@ -209,7 +210,7 @@ std::vector<SceneRecipe> stacking_scenes() {
        600},
       {"pyramid",
        "stacking",
-       "a pyramid of touching boxes; base=100 is Box2D v3's large_pyramid (5,050 boxes)",
+       "a pyramid of touching boxes; base=100 is the 5,050-box large pyramid engine benchmarks use",
        {{"base", 20, 1, 2000, true, "boxes in the bottom row"},
         {"size", 1.0, 0.01, 100.0, false, "box edge, m"}},
        pyramid,

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -191,11 +192,11 @@ void World::destroy_body(BodyId id) {
   impl_->dirty = true;
 }
 
-bool World::contains(BodyId id) const {
+bool World::contains(BodyId id) const noexcept {
   return id.value < impl_->slot_of_id.size() && impl_->slot_of_id[id.value] != detail::kNoSlot;
 }
 
-std::size_t World::body_count() const {
+std::size_t World::body_count() const noexcept {
   return impl_->bodies.size();
 }
 
@@ -248,8 +249,7 @@ std::uint8_t World::touching_flags(BodyId id) const {
   return impl_->bodies.touching[impl_->slot(id)];
 }
 
-void World::read_state(std::span<const BodyId> ids, std::span<Vec2> positions,
-                       std::span<Vec2> velocities) const {
+void World::read_state(Span<const BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities) const {
   const detail::Bodies& b = impl_->bodies;
   if ((!positions.empty() && positions.size() < ids.size()) ||
       (!velocities.empty() && velocities.size() < ids.size())) {
@@ -301,13 +301,13 @@ void World::step(double dt) {
   }
 }
 
-const StepStats& World::last_step_stats() const {
+const StepStats& World::last_step_stats() const noexcept {
   return impl_->stats;
 }
-std::span<const CrushEvent> World::crush_events() const {
-  return impl_->crushes;
+Span<const CrushEvent> World::crush_events() const noexcept {
+  return {impl_->crushes.data(), impl_->crushes.size()};
 }
-const WorldDef& World::def() const {
+const WorldDef& World::def() const noexcept {
   return impl_->def;
 }
 

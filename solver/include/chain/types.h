@@ -1,15 +1,23 @@
-// Plain data shared by the solver's API: vectors, body kinds, handles, per-step reports.
+// Plain data shared by the solver's API: vectors, body kinds, handles, views, per-step reports.
+// Units: metres, kilograms, seconds; y points up. Compiles as C++17 or later.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
+#include <utility>
+
+#if __cplusplus >= 202002L
+#include <span>
+#endif
 
 namespace chain {
 
 // Double precision throughout: a chain of n pushes accumulates n roundings, and a float at
 // 1 km already resolves only 6e-5 m.
 struct Vec2 {
-  double x = 0.0;
+  double x = 0.0;  // metres (or m/s, m/s^2, by context)
   double y = 0.0;
 };
 
@@ -38,7 +46,40 @@ struct BodyId {
   static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();
   std::uint32_t value = kInvalid;
 
-  friend constexpr bool operator==(BodyId, BodyId) = default;
+  friend constexpr bool operator==(BodyId a, BodyId b) { return a.value == b.value; }
+  friend constexpr bool operator!=(BodyId a, BodyId b) { return a.value != b.value; }
+};
+
+// A view of `size()` contiguous T: std::span's role for C++17 callers. Built from a pointer and a
+// count, or from any container with data() and size() (std::vector, std::array, std::span); in
+// C++20 it also converts to std::span. It never owns what it shows.
+template <class T>
+class Span {
+ public:
+  constexpr Span() noexcept = default;
+  constexpr Span(T* data, std::size_t size) noexcept : data_(data), size_(size) {}
+  template <class C, class = std::enable_if_t<
+                         !std::is_same_v<std::remove_cv_t<std::remove_reference_t<C>>, Span> &&
+                         std::is_convertible_v<decltype(std::declval<C&>().data()), T*>>>
+  constexpr Span(C&& c) noexcept : data_(c.data()), size_(c.size()) {}  // NOLINT: implicit
+
+  constexpr T* data() const noexcept { return data_; }
+  constexpr std::size_t size() const noexcept { return size_; }
+  constexpr bool empty() const noexcept { return size_ == 0; }
+  constexpr T* begin() const noexcept { return data_; }
+  constexpr T* end() const noexcept { return data_ + size_; }
+  // i < size(); not checked.
+  constexpr T& operator[](std::size_t i) const noexcept { return data_[i]; }
+
+#if __cplusplus >= 202002L
+  constexpr operator std::span<T>() const noexcept {
+    return {data_, size_};
+  }  // NOLINT
+#endif
+
+ private:
+  T* data_ = nullptr;
+  std::size_t size_ = 0;
 };
 
 // Sides on which a body was pushed during the last step (y up: bottom is the -y side).

@@ -19,6 +19,10 @@ namespace chain::detail {
 
 inline constexpr std::uint32_t kNoSlot = 0xffffffffu;
 
+// Bits of Bodies::driven: the velocity components a drive holds (chain::DriveAxes values).
+inline constexpr std::uint8_t kDriveX = 1u;
+inline constexpr std::uint8_t kDriveY = 2u;
+
 struct Bodies {
   // Centre and half extents together: every overlap test reads all four, and a chain reaches
   // bodies in no fixed order, so one cache line per body beats four.
@@ -32,7 +36,7 @@ struct Bodies {
   std::vector<double> gravity_scale;
   std::vector<double> restitution;
   std::vector<double> drive_x, drive_y;
-  std::vector<std::uint8_t> driven;
+  std::vector<std::uint8_t> driven;    // kDriveX | kDriveY bits held by the body's drive
   std::vector<std::uint8_t> touching;  // touching:: bits of the last step
   std::vector<BodyType> type;
   std::vector<std::uint32_t> id;  // BodyId value of each slot

@@ -41,6 +41,14 @@ enum class VelocityRule : std::uint8_t {
 
 enum class Axis : std::uint8_t { kX = 0, kY = 1 };
 
+// The velocity components a drive holds (World::set_drive). An axis a drive does not hold is
+// left to gravity and contacts.
+enum class DriveAxes : std::uint8_t {
+  kX = 1,     // hold the x velocity only: a character controller's horizontal speed
+  kY = 2,     // hold the y velocity only
+  kBoth = 3,  // hold the whole velocity
+};
+
 // A stable handle: never reused within a world, unaffected by how the world stores bodies.
 struct BodyId {
   static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();

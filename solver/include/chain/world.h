@@ -1,8 +1,8 @@
 // A world of axis-aligned boxes resolved by collision chaining.
 //
 // Units: metres, kilograms, seconds; y points up. Each step of dt seconds:
-//   1. Drives set velocities, gravity accelerates dynamic bodies, and every movable body moves by
-//      velocity * dt.
+//   1. Drives set the velocity components they hold, gravity accelerates dynamic bodies, and every
+//      movable body moves by velocity * dt.
 //   2. Overlapping boxes are pushed apart by chaining: a push that causes a new overlap is resolved
 //      in turn, with the pushing mass accumulated down the chain.
 //   3. Velocities: the velocity rule; touching flags and crush events.
@@ -91,12 +91,16 @@ class World {
   bool contains(BodyId id) const noexcept;
   std::size_t body_count() const noexcept;
 
-  // A drive sets the body's velocity (m/s) at the start of every step until cleared, as a
-  // character controller would; gravity still acts within the step, and contacts may change the
-  // velocity after it. Dynamic and kinematic bodies only. Throws std::invalid_argument for an
-  // unknown id, a static body, or a component that is not finite or beyond kMaxSpeed. Replaces
-  // any drive the body had.
-  void set_drive(BodyId id, Vec2 velocity);
+  // A drive sets the velocity components it holds (m/s) at the start of every step until cleared,
+  // as a character controller would; gravity still acts within the step, and contacts may change
+  // the velocity after it. An axis it does not hold is left free: set_drive(id, {4, 0},
+  // DriveAxes::kX) walks at 4 m/s and falls off a ledge.
+  // Both variants (seed2014 applies it the same way, in its integration). Dynamic and kinematic
+  // bodies only. Throws std::invalid_argument for an unknown id, a static body, a held component
+  // that is not finite or beyond kMaxSpeed, or `axes` not a DriveAxes value. Replaces any drive
+  // the body had; the two-argument form holds both axes.
+  void set_drive(BodyId id, Vec2 velocity, DriveAxes axes);
+  void set_drive(BodyId id, Vec2 velocity) { set_drive(id, velocity, DriveAxes::kBoth); }
   // Ends the body's drive, if any; it keeps the velocity it has. Throws std::invalid_argument
   // (unknown id).
   void clear_drive(BodyId id);

@@ -85,6 +85,7 @@ void Bodies::append(const BodyDef& def, std::uint32_t body_id) {
   mass.push_back(dynamic ? def.mass : 0.0);
   gravity_scale.push_back(dynamic ? def.gravity_scale : 0.0);
   restitution.push_back(def.restitution);
+  start.push_back({def.center.x, def.center.y});
   drive_x.push_back(0.0);
   drive_y.push_back(0.0);
   driven.push_back(0);
@@ -101,6 +102,7 @@ std::uint32_t Bodies::swap_remove(std::uint32_t slot) {
   };
   move_last(box), move_last(vx), move_last(vy);
   move_last(mass), move_last(gravity_scale), move_last(restitution);
+  move_last(start);
   move_last(drive_x), move_last(drive_y), move_last(driven), move_last(touching);
   move_last(type), move_last(id);
   return slot < size() ? id[slot] : kNoSlot;
@@ -136,11 +138,13 @@ void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id) {
 }
 
 void Bodies::Spare::reserve(std::size_t n) {
-  box.reserve(n), real.reserve(n), byte.reserve(n), word.reserve(n), type.reserve(n);
+  box.reserve(n), point.reserve(n), real.reserve(n), byte.reserve(n), word.reserve(n),
+      type.reserve(n);
 }
 
 void Bodies::permute(std::span<const std::uint32_t> order, Spare& spare) {
   gather(box, order, spare.box);
+  gather(start, order, spare.point);
   for (auto* v : {&vx, &vy, &mass, &gravity_scale, &restitution, &drive_x, &drive_y})
     gather(*v, order, spare.real);
   gather(driven, order, spare.byte), gather(touching, order, spare.byte);

@@ -19,6 +19,10 @@ namespace chain::detail {
 
 inline constexpr std::uint32_t kNoSlot = 0xffffffffu;
 
+struct Point {
+  double x, y;
+};
+
 // Bits of Bodies::driven: the velocity components a drive holds (chain::DriveAxes values).
 inline constexpr std::uint8_t kDriveX = 1u;
 inline constexpr std::uint8_t kDriveY = 2u;
@@ -36,7 +40,10 @@ struct Bodies {
   std::vector<double> gravity_scale;
   std::vector<double> restitution;
   std::vector<double> drive_x, drive_y;
-  std::vector<std::uint8_t> driven;    // kDriveX | kDriveY bits held by the body's drive
+  std::vector<std::uint8_t> driven;  // kDriveX | kDriveY bits held by the body's drive
+  // Movable bodies: the centre at the start of the current step, before integration. Which face
+  // a body came in through is read from it.
+  std::vector<Point> start;
   std::vector<std::uint8_t> touching;  // touching:: bits of the last step
   std::vector<BodyType> type;
   std::vector<std::uint32_t> id;  // BodyId value of each slot
@@ -54,6 +61,10 @@ struct Bodies {
   double& pos(int axis, std::uint32_t i) { return box[i].center[axis]; }
   double pos(int axis, std::uint32_t i) const { return box[i].center[axis]; }
   double half(int axis, std::uint32_t i) const { return box[i].half[axis]; }
+  // Centre at the start of the step along axis (a static body's never changes).
+  double start_pos(int axis, std::uint32_t i) const {
+    return i < movable_end ? (axis == 0 ? start[i].x : start[i].y) : box[i].center[axis];
+  }
   bool immovable(std::uint32_t i) const { return i >= dynamic_end; }
 
   void append(const BodyDef& def, std::uint32_t body_id);
@@ -65,6 +76,7 @@ struct Bodies {
   // Buffers permute() fills and swaps in, kept between calls so that it allocates nothing.
   struct Spare {
     std::vector<Box> box;
+    std::vector<Point> point;
     std::vector<double> real;
     std::vector<std::uint8_t> byte;
     std::vector<std::uint32_t> word;

@@ -10,6 +10,7 @@ void Motion::integrate(Bodies& b, Broadphase& broadphase, Vec2 gravity, double d
       b.vx[i] += gravity.x * b.gravity_scale[i] * dt;
       b.vy[i] += gravity.y * b.gravity_scale[i] * dt;
     }
+    b.start[i] = {b.x(i), b.y(i)};
     b.pos(0, i) += b.vx[i] * dt;
     b.pos(1, i) += b.vy[i] * dt;
     broadphase.note_move(i, b.x(i), b.y(i));

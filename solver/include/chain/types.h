@@ -29,7 +29,8 @@ enum class BodyType : std::uint8_t {
 
 // The push-out algorithm a world runs.
 enum class Variant : std::uint8_t {
-  kModern,    // collision chaining done right: order-independent, bounded, crush-aware
+  kModern,    // collision chaining done right: order-independent, bounded, crush-aware, with
+              // seam-free immovable contacts
   kSeed2014,  // the 2014 engine's algorithm, quirks included (see seed/ALGORITHM-2014.md)
 };
 

@@ -4,7 +4,11 @@
 //   1. Drives set the velocity components they hold, gravity accelerates dynamic bodies, and every
 //      movable body moves by velocity * dt.
 //   2. Overlapping boxes are pushed apart by chaining: a push that causes a new overlap is resolved
-//      in turn, with the pushing mass accumulated down the chain.
+//      in turn, with the pushing mass accumulated down the chain. A dynamic body is pushed out of
+//      a static or kinematic body through the face it came in through (modern): from where it
+//      was at the start of the step relative to that body, so the joins between flush tiles are
+//      neither snagged on nor pushed sideways from, and a body that travelled past its centre still
+//      comes out on the side it came from.
 //   3. Velocities: the velocity rule; touching flags and crush events.
 //
 // The solver depends on the C++ standard library only; this header compiles as C++17 or later.
@@ -59,6 +63,7 @@ struct WorldDef {
   int seed_max_depth = 2048;
   // Overlaps no deeper than this are contact, not penetration (metres), in [0, 1]. A row of n
   // boxes can hold up to n times this, so it is kept near double rounding at kilometre scale.
+  // Faces of immovable bodies closer than this count as flush (one surface).
   double touch_tolerance = 1.0e-9;
   // Inelastic rule: closing speeds below this do not bounce (m/s), in [0, 1e6].
   double restitution_threshold = 1.0;

@@ -42,7 +42,7 @@ struct Bodies {
   std::vector<double> drive_x, drive_y;
   std::vector<std::uint8_t> driven;  // kDriveX | kDriveY bits held by the body's drive
   // Movable bodies: the centre at the start of the current step, before integration. Which face
-  // a body came in through is read from it.
+  // a body came in through, and the path a fast body swept, are read from it.
   std::vector<Point> start;
   std::vector<std::uint8_t> touching;  // touching:: bits of the last step
   std::vector<BodyType> type;

@@ -22,10 +22,13 @@ constexpr std::uint32_t kUnreached = 0xffffffffu;
 void ChainResolver::gather_contacts(StepContext& ctx) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
-  if (near_generation_ == ctx.broadphase.generation() && ctx.broadphase.near_pairs_hold()) {
+  const bool hold = ctx.broadphase.near_pairs_hold();
+  if (!fresh_grid_ && near_generation_ == ctx.broadphase.generation() && hold) {
     state_.begin_sweep(bodies, nullptr);
   } else {
-    ctx.broadphase.build(bodies);
+    // The sweep's build serves while its own moves keep within the slack.
+    if (!fresh_grid_ || !hold) ctx.broadphase.build(bodies);
+    fresh_grid_ = false;
     near_generation_ = ctx.broadphase.generation();
     near_pairs_.clear();
     ctx.broadphase.for_each_near_pair([&](std::uint32_t i, std::uint32_t j) {
@@ -52,7 +55,7 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
 // the bodies involved: the contacts are among the near pairs of those bodies, while they hold.
 void ChainResolver::gather_suspect_contacts(StepContext& ctx) {
   const Broadphase& bp = ctx.broadphase;
-  if (near_generation_ != bp.generation() || !bp.near_pairs_hold()) {
+  if (fresh_grid_ || near_generation_ != bp.generation() || !bp.near_pairs_hold()) {
     near_generation_ = 0;  // forces a new scan
     gather_contacts(ctx);
     return;

@@ -1,8 +1,9 @@
 // The modern collision-chaining resolver.
 //
-// A sweep finds every overlapping pair and resolves them in shock-propagation order: contacts with
-// immovable bodies first (each body's in the order it entered them), then outward by contact-graph
-// distance from them. Resolving a pair starts a chain:
+// Fast bodies are swept first (sweep.h). Then a sweep finds every overlapping pair and resolves
+// them in shock-propagation order: contacts with immovable bodies first (each body's in the order
+// it entered them), then outward by contact-graph distance from them. Resolving a pair starts a
+// chain:
 //   - against an immovable body, the dynamic body is pushed out through the face it came in
 //     through (entry_face.h), takes the whole push and acts as a wall from then on
 //     (force_static.h); against a body supported from that side, the same along least overlap;
@@ -23,6 +24,7 @@
 #include "chain_state.h"
 #include "force_static.h"
 #include "step_context.h"
+#include "sweep.h"
 
 #include <cstdint>
 #include <span>
@@ -76,6 +78,9 @@ class ChainResolver {
 
   ChainState state_;
   ForceStatic walls_;
+  Sweep sweep_;
+  // The sweep built the broadphase this step, and its near pairs are not scanned yet.
+  bool fresh_grid_ = false;
   bool repeat_immovable_ = false;  // some body has several immovable contacts in this sweep
   struct Entry {
     Pair pair;

@@ -3,6 +3,7 @@
 
 #include "bodies.h"
 #include "broadphase.h"
+#include "motion.h"
 #include "velocity_response.h"
 
 #include <chain/types.h>
@@ -29,6 +30,7 @@ struct StepContext {
   StepStats& stats;
   std::vector<CrushRecord>& crushes;
   std::uint64_t budget;  // pair resolutions left this step
+  const Motion& motion;  // what integration did this step
 
   double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
 

@@ -190,11 +190,11 @@ void World::step(double dt) {
   std::fill(w.bodies.touching.begin(), w.bodies.touching.end(), std::uint8_t{0});
 
   const bool modern = w.def.variant == Variant::kModern;
-  w.motion.integrate(w.bodies, w.broadphase, w.def.gravity, dt);
+  w.motion.integrate(w.bodies, w.broadphase, w.def.gravity, dt, modern);
   const std::uint64_t budget =
       static_cast<std::uint64_t>(w.def.budget_per_body) * w.bodies.size() + 1024u;
   detail::StepContext ctx{w.bodies, w.broadphase,    w.response, w.def,
-                          w.stats,  w.crush_records, budget};
+                          w.stats,  w.crush_records, budget,     w.motion};
   if (modern) {
     w.modern.resolve(ctx);
   } else {

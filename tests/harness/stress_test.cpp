@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <string>
 
 namespace chainbench {
 namespace {
@@ -50,14 +51,16 @@ TEST(StressVerdicts, SlowProjectileHitsTheStack) {
   EXPECT_EQ(v.verdict(), "ok");
 }
 
-// At 500 m/s (8.3 m a step) the projectile jumps the 1 m stack, which no engine without
-// continuous collision between moving bodies can see; the catcher keeps it in bounds.
-TEST(StressVerdicts, FastProjectileTunnelsAndIsReportedNotFatal) {
+// At 500 m/s (8.3 m a step) the projectile jumps the 1 m stack in one step. Box2D, without
+// continuous collision between moving bodies, tunnels; the modern chain solver sweeps a fast body
+// against the other bodies' motion (solver/src/sweep.h), so the projectile hits the middle box and
+// knocks it out of the stack instead. The catcher keeps everything in bounds.
+TEST(StressVerdicts, FastProjectileTunnelsInBox2dButNotInChain) {
   for (const char* engine : {"chain", "box2d"}) {
     SCOPED_TRACE(engine);
     const StressVerdict v = run_stress_case(projectile_at("500"), parse_engine_spec(engine), 60.0);
     ASSERT_TRUE(v.finished);
-    EXPECT_TRUE(v.tunnelled);
+    EXPECT_EQ(v.tunnelled, std::string(engine) == "box2d");
     EXPECT_TRUE(v.in_bounds);
     EXPECT_FALSE(v.fatal());
   }

@@ -30,7 +30,7 @@ enum class BodyType : std::uint8_t {
 // The push-out algorithm a world runs.
 enum class Variant : std::uint8_t {
   kModern,    // collision chaining done right: order-independent, bounded, crush-aware, with
-              // seam-free immovable contacts
+              // continuous collision and seam-free immovable contacts
   kSeed2014,  // the 2014 engine's algorithm, quirks included (see seed/ALGORITHM-2014.md)
 };
 
@@ -118,6 +118,8 @@ struct StepStats {
   std::uint32_t crush_events = 0;   // bodies squeezed between two immovable bodies
   std::uint32_t renumbered = 0;     // 1 if the step left its bodies stored in the order it reached
                                     // them, for the next steps' memory access (modern)
+  std::uint32_t fast_bodies = 0;    // bodies that moved far for their size, swept (modern)
+  std::uint32_t swept = 0;          // bodies whose motion the sweep cut or slid (modern)
 };
 
 }  // namespace chain

@@ -3,13 +3,29 @@
 // Units: metres, kilograms, seconds; y points up. Each step of dt seconds:
 //   1. Drives set the velocity components they hold, gravity accelerates dynamic bodies, and every
 //      movable body moves by velocity * dt.
-//   2. Overlapping boxes are pushed apart by chaining: a push that causes a new overlap is resolved
+//   2. Continuous collision (modern): a body that moved far for its size this step is swept along
+//      its path (see "Fast bodies" below).
+//   3. Overlapping boxes are pushed apart by chaining: a push that causes a new overlap is resolved
 //      in turn, with the pushing mass accumulated down the chain. A dynamic body is pushed out of
 //      a static or kinematic body through the face it came in through (modern): from where it
 //      was at the start of the step relative to that body, so the joins between flush tiles are
-//      neither snagged on nor pushed sideways from, and a body that travelled past its centre still
-//      comes out on the side it came from.
-//   3. Velocities: the velocity rule; touching flags and crush events.
+//      neither snagged on nor pushed sideways from, and a body never comes out on the far side.
+//   4. Velocities: the velocity rule; touching flags and crush events.
+//
+// Fast bodies (modern). A dynamic body is fast in a step when it moves more than half its half
+// extent along an axis; a kinematic body, more than its half extent.
+//   - Against static and kinematic bodies: no dynamic body passes through one, at any speed up to
+//     kMaxSpeed and any dt. A fast body's motion is swept; at each static or kinematic face it
+//     meets it stops moving into that face and slides on along it (up to 4 faces a step; after
+//     the 4th it stops for the rest of the step), as a slow body resting there would.
+//   - Against dynamic bodies: a fast dynamic body is swept against the straight-line motion of
+//     every other dynamic body over the step. At the first meeting that would leave it past the
+//     other body, or inside it by more than a quarter of the smaller box, it is moved back along
+//     its path to that depth, and push-out then resolves the collision as between slow bodies
+//     (mass split, chains, velocity rule). So a fast body never passes through a body that moves
+//     as integrated, at any speed. Not guaranteed: if both bodies are fast and one is stopped
+//     earlier in the step by a third body, the other may miss it; bodies pushed by chains are not
+//     swept (a push moves a body at most by an overlap depth).
 //
 // The solver depends on the C++ standard library only; this header compiles as C++17 or later.
 // Any function that allocates may also throw std::bad_alloc.
@@ -124,7 +140,8 @@ class World {
   // writing anything) or an unknown id (after writing the entries before it).
   void read_state(Span<const BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities) const;
 
-  // Advances by dt seconds. Throws std::invalid_argument unless dt is finite and > 0.
+  // Advances by dt seconds. Throws std::invalid_argument unless dt is finite and > 0; any dt is
+  // valid, and fast bodies are swept whatever it is (modern).
   // Deterministic: the same bodies, in any creation order, give the same bits (modern variant;
   // two identical bodies in the same place may trade places, as nothing tells them apart).
   // Allocates nothing once the world's buffers have grown to their working size.

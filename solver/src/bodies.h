@@ -39,6 +39,7 @@ struct Bodies {
   std::vector<double> mass;    // 0 for kinematic and static bodies
   std::vector<double> gravity_scale;
   std::vector<double> restitution;
+  std::vector<double> friction;
   std::vector<double> drive_x, drive_y;
   std::vector<std::uint8_t> driven;  // kDriveX | kDriveY bits held by the body's drive
   // Movable bodies: the centre at the start of the current step, before integration. Which face

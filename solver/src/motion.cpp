@@ -5,10 +5,12 @@
 
 namespace chain::detail {
 
-void Motion::integrate(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt, bool find_fast) {
+void Motion::integrate(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt, bool find_fast,
+                       bool keep_velocities) {
   fast.clear();
   slow_reach = 0.0;
   if (fast.capacity() < b.movable_end) fast.reserve(b.movable_end);
+  if (keep_velocities && pre_velocity.size() < b.dynamic_end) pre_velocity.resize(b.dynamic_end);
   for (std::uint32_t i = 0; i < b.movable_end; ++i) {
     if (b.driven[i] & kDriveX) b.vx[i] = b.drive_x[i];
     if (b.driven[i] & kDriveY) b.vy[i] = b.drive_y[i];
@@ -16,6 +18,7 @@ void Motion::integrate(Bodies& b, Broadphase& broadphase, Vec2 gravity, double d
     if (dynamic) {
       b.vx[i] += gravity.x * b.gravity_scale[i] * dt;
       b.vy[i] += gravity.y * b.gravity_scale[i] * dt;
+      if (keep_velocities) pre_velocity[i] = {b.vx[i], b.vy[i]};
     }
     const double x0 = b.pos(0, i), y0 = b.pos(1, i);
     b.start[i] = {x0, y0};

@@ -1,6 +1,7 @@
 // Integration: drives, gravity and positions for one step, and what the rest of the step needs
-// to know about it: where every movable body started, and which bodies moved far for their size
-// (the sweep takes those).
+// to know about it: where every movable body started, which bodies moved far for their size
+// (the sweep takes those), and the velocities before push-out (friction weighs contacts by the
+// momentum push-out took).
 #pragma once
 
 #include "bodies.h"
@@ -27,10 +28,13 @@ struct Motion {
   std::vector<std::uint32_t> fast;
   // The largest move along an axis of any movable body that is not fast, m.
   double slow_reach = 0.0;
+  // Per dynamic slot, the velocity after drives and gravity (filled when keeping velocities).
+  std::vector<Point> pre_velocity;
 
   // Applies drives and gravity to velocities, moves every movable body by velocity * dt, records
-  // start positions (and, as asked, the fast bodies), and notes every move.
-  void integrate(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt, bool find_fast);
+  // start positions (and, as asked, the fast bodies and the velocities), and notes every move.
+  void integrate(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt, bool find_fast,
+                 bool keep_velocities);
 };
 
 }  // namespace chain::detail

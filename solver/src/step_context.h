@@ -31,6 +31,7 @@ struct StepContext {
   std::vector<CrushRecord>& crushes;
   std::uint64_t budget;  // pair resolutions left this step
   const Motion& motion;  // what integration did this step
+  bool record_links;     // pushes are recorded for the inelastic rule or friction
 
   double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
 
@@ -59,7 +60,7 @@ struct StepContext {
                                           : (sign > 0 ? touching::kTop : touching::kBottom);
     bodies.touching[a] |= a_side;
     bodies.touching[b] |= b_side;
-    if (def.velocity_rule == VelocityRule::kInelastic) response.add(a, b, axis, sign);
+    if (record_links) response.add(a, b, axis, sign);
   }
 };
 

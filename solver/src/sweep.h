@@ -13,7 +13,7 @@
 // a body's path is cut at the first face it meets that is a way in (entry_face.h: not a join
 // between flush tiles); the body is placed against that face and keeps moving along it (moving
 // with a kinematic body along the face's axis), as a slow body resting there would. That contact
-// is recorded like a push (touching flags, velocity rule). A body may slide along up to
+// is recorded like a push (touching flags, velocity rule, friction). A body may slide along up to
 // kMaxSlides faces a step and then stops for the rest of the step. A slow body that a fast
 // kinematic body reaches is swept the same way, against everything immovable around both paths.
 //

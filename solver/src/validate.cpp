@@ -37,7 +37,8 @@ std::string validate(const BodyDef& def) {
         check_range("half_extents.y", def.half_extents.y, 0.0, kMaxHalfExtent, "> 0 and <= 1e8 m"),
         check_range("velocity.x", def.velocity.x, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s"),
         check_range("velocity.y", def.velocity.y, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s"),
-        check_range("restitution", def.restitution, 0.0, 1.0, "in [0, 1]")}) {
+        check_range("restitution", def.restitution, 0.0, 1.0, "in [0, 1]"),
+        check_range("friction", def.friction, 0.0, kMaxFriction, "in [0, 1e6]")}) {
     if (!e.empty()) return e;
   }
   if (def.half_extents.x <= 0.0)

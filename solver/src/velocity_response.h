@@ -25,12 +25,15 @@ class VelocityResponse {
   }
   void apply(Bodies& bodies, double restitution_threshold);
 
- private:
-  struct Link {
+  struct Link {  // a was pushed out of b along axis, in direction sign
     std::uint32_t a, b;
     std::uint8_t axis;
     std::int8_t sign;
   };
+  // The pushes of the step so far, in the order they happened.
+  const std::vector<Link>& links() const { return links_; }
+
+ private:
   void apply_axis(Bodies& bodies, int axis, double restitution_threshold);
   std::uint32_t find(std::uint32_t i);
 

@@ -3,6 +3,7 @@
 #include "bodies.h"
 #include "broadphase.h"
 #include "chain_resolver.h"
+#include "friction.h"
 #include "layout.h"
 #include "motion.h"
 #include "seed2014_resolver.h"
@@ -32,6 +33,8 @@ struct World::Impl {
   detail::Broadphase broadphase;
   detail::VelocityResponse response;
   detail::Motion motion;
+  detail::Friction friction;
+  std::size_t rough_bodies = 0;  // bodies with friction > 0: friction runs only while there are
   detail::ChainResolver modern;
   detail::Seed2014Resolver seed2014;
   detail::Layout layout;
@@ -92,12 +95,14 @@ BodyId World::create_body(const BodyDef& def) {
   if (id == BodyId::kInvalid) throw std::length_error("a world holds at most 2^32 - 1 bodies");
   impl_->slot_of_id.push_back(impl_->bodies.size());
   impl_->bodies.append(def, id);
+  if (def.friction > 0.0) ++impl_->rough_bodies;
   impl_->dirty = true;
   return BodyId{id};
 }
 
 void World::destroy_body(BodyId id) {
   const std::uint32_t s = impl_->slot(id);
+  if (impl_->bodies.friction[s] > 0.0) --impl_->rough_bodies;
   const std::uint32_t moved = impl_->bodies.swap_remove(s);
   if (moved != detail::kNoSlot) impl_->slot_of_id[moved] = s;
   impl_->slot_of_id[id.value] = detail::kNoSlot;
@@ -190,11 +195,14 @@ void World::step(double dt) {
   std::fill(w.bodies.touching.begin(), w.bodies.touching.end(), std::uint8_t{0});
 
   const bool modern = w.def.variant == Variant::kModern;
-  w.motion.integrate(w.bodies, w.broadphase, w.def.gravity, dt, modern);
+  const bool rough = modern && w.rough_bodies > 0;
+  w.motion.integrate(w.bodies, w.broadphase, w.def.gravity, dt, modern, rough);
   const std::uint64_t budget =
       static_cast<std::uint64_t>(w.def.budget_per_body) * w.bodies.size() + 1024u;
-  detail::StepContext ctx{w.bodies, w.broadphase,    w.response, w.def,
-                          w.stats,  w.crush_records, budget,     w.motion};
+  detail::StepContext ctx{
+      w.bodies, w.broadphase, w.response,
+      w.def,    w.stats,      w.crush_records,
+      budget,   w.motion,     w.def.velocity_rule == VelocityRule::kInelastic || rough};
   if (modern) {
     w.modern.resolve(ctx);
   } else {
@@ -203,6 +211,8 @@ void World::step(double dt) {
   if (w.def.velocity_rule == VelocityRule::kInelastic) {
     w.response.apply(w.bodies, w.def.restitution_threshold);
   }
+  if (rough)
+    w.friction.apply(w.bodies, w.broadphase, w.response.links(), w.motion.pre_velocity, dt);
   w.crushes.clear();
   for (const detail::CrushRecord& r : w.crush_records) {
     w.crushes.push_back({BodyId{w.bodies.id[r.body]}, BodyId{w.bodies.id[r.anchor]},

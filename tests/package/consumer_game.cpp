@@ -1,5 +1,5 @@
 // What a C++17 game does with the solver: both public headers, a driven player pushing a box, a
-// character walking with x held, and the C++17 views. Exits 0 when all went as expected.
+// character walking with x held, friction, and the C++17 views. Exits 0 when all went as expected.
 #include <chain/types.h>
 #include <chain/world.h>
 
@@ -16,6 +16,7 @@ int play() {
   const chain::BodyId p = world.create_body(player);
   chain::BodyDef box;
   box.center = {1.0, 0.0};
+  box.friction = 0.5;
   const chain::BodyId b = world.create_body(box);
   world.set_drive(p, {2.0, 0.0});
   for (int i = 0; i < 60; ++i)

@@ -30,20 +30,26 @@ enum class BodyType : std::uint8_t {
 // The push-out algorithm a world runs.
 enum class Variant : std::uint8_t {
   kModern,    // collision chaining done right: order-independent, bounded, crush-aware, with
-              // continuous collision and seam-free immovable contacts
+              // continuous collision, seam-free immovable contacts and friction
   kSeed2014,  // the 2014 engine's algorithm, quirks included (see seed/ALGORITHM-2014.md)
 };
 
-// What a push does to the velocities of the bodies it separates.
+// What a push does to the velocities of the bodies it separates. Friction (modern, BodyDef::
+// friction) acts after either rule, bounded by the normal momentum the rule took (world.h).
 enum class VelocityRule : std::uint8_t {
-  kZero,       // a velocity component pointing into the push is set to zero (the 2014 rule)
-  kInelastic,  // bodies pushed against each other share a mass-weighted normal velocity
+  // A velocity component pointing into the push is set to zero (the 2014 rule); a pushed body
+  // gains no velocity. Friction then slows or carries along the surface with the momentum that
+  // stop took: a body resting on a moving platform is carried, a sliding one stops.
+  kZero,
+  // Bodies pushed against each other share a mass-weighted normal velocity (perfectly inelastic),
+  // or bounce by restitution; friction acts with the momentum that change took.
+  kInelastic,
 };
 
 enum class Axis : std::uint8_t { kX = 0, kY = 1 };
 
 // The velocity components a drive holds (World::set_drive). An axis a drive does not hold is
-// left to gravity and contacts.
+// left to gravity, contacts and friction.
 enum class DriveAxes : std::uint8_t {
   kX = 1,     // hold the x velocity only: a character controller's horizontal speed
   kY = 2,     // hold the y velocity only

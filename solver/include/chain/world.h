@@ -10,7 +10,7 @@
 //      a static or kinematic body through the face it came in through (modern): from where it
 //      was at the start of the step relative to that body, so the joins between flush tiles are
 //      neither snagged on nor pushed sideways from, and a body never comes out on the far side.
-//   4. Velocities: the velocity rule; touching flags and crush events.
+//   4. Velocities: the velocity rule, then friction (modern); touching flags and crush events.
 //
 // Fast bodies (modern). A dynamic body is fast in a step when it moves more than half its half
 // extent along an axis; a kinematic body, more than its half extent.
@@ -46,6 +46,7 @@ inline constexpr double kMaxHalfExtent = 1.0e8;  // metres
 inline constexpr double kMaxSpeed = 1.0e6;       // |velocity| components, m/s
 inline constexpr double kMaxMass = 1.0e18;       // kg
 inline constexpr double kMaxGravity = 1.0e6;     // |gravity| components, m/s^2
+inline constexpr double kMaxFriction = 1.0e6;    // friction coefficient, dimensionless
 
 // A body to add. World::create_body refuses (std::invalid_argument) a definition for which
 // validate() is not empty; the limits are given per field.
@@ -59,6 +60,16 @@ struct BodyDef {
   double mass = 1.0;           // kg; dynamic bodies only: > 0 and <= kMaxMass (else ignored)
   double gravity_scale = 1.0;  // dynamic bodies only: finite, |s| <= 1e6 (else ignored)
   double restitution = 0.0;    // in [0, 1]; the inelastic rule bounces by it (modern, seed2014)
+  // Coulomb friction coefficient, in [0, kMaxFriction], any body type. A contact's coefficient is
+  // sqrt(fa * fb), as Box2D 2.4's b2MixFriction, so a body with 0 never rubs. Modern variant
+  // only, both velocity rules (seed2014 ignores it); with 0 on every body nothing changes, to the
+  // bit. Push-out leaves no forces, so the normal impulse friction is bounded by is the momentum
+  // the step's push-out and velocity rule took out of the bodies a contact holds up, handed down
+  // through their supports (split evenly where a body rests on several): the bottom contact of a
+  // resting stack carries the whole stack's weight, M g dt a step, and a stack on a moving
+  // platform is carried as one. Friction never changes a component a drive holds, and moves a
+  // body by half the velocity it took, times dt, so a box sliding at v stops after v^2/(2 mu g).
+  double friction = 0.0;
 };
 
 // A world's settings. World's constructor refuses (std::invalid_argument) a definition for which
@@ -115,7 +126,7 @@ class World {
   // A drive sets the velocity components it holds (m/s) at the start of every step until cleared,
   // as a character controller would; gravity still acts within the step, and contacts may change
   // the velocity after it. An axis it does not hold is left free: set_drive(id, {4, 0},
-  // DriveAxes::kX) walks at 4 m/s and falls off a ledge.
+  // DriveAxes::kX) walks at 4 m/s and falls off a ledge. Friction never changes a held component.
   // Both variants (seed2014 applies it the same way, in its integration). Dynamic and kinematic
   // bodies only. Throws std::invalid_argument for an unknown id, a static body, a held component
   // that is not finite or beyond kMaxSpeed, or `axes` not a DriveAxes value. Replaces any drive

@@ -120,6 +120,17 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
                      const std::vector<Point>& pre_velocity, double dt) {
   if (links.empty()) return;
   const std::size_t n_links = links.size();
+  if (limit_.capacity() < links.capacity()) {
+    // As many as the link list can hold, so that a busier step does not allocate.
+    for (auto* v : {&normal_, &limit_, &applied_})
+      v->reserve(links.capacity());
+    for (auto* v : {&active_, &adj_})
+      v->reserve(2 * links.capacity());
+    for (auto* v : {&bodies_, &level_, &adj_start_, &queue_})
+      v->reserve(bodies.size() + 2);
+    carried_.reserve(bodies.size());
+    v_before_.reserve(bodies.size());
+  }
   limit_.assign(n_links, 0.0);
   active_.clear();
   bool any = false;

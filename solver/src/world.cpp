@@ -53,6 +53,7 @@ struct World::Impl {
     bodies.canonicalize(slot_of_id);
     broadphase.configure(bodies);
     layout.reset(bodies.size());
+    response.reserve(bodies.size());
     list_creation_order();
     dirty = false;
   }

@@ -1,7 +1,7 @@
 // Integration: drives, gravity and positions for one step, and what the rest of the step needs
-// to know about it: where every movable body started, which bodies moved far for their size
-// (the sweep takes those), and the velocities before push-out (friction weighs contacts by the
-// momentum push-out took).
+// to know about it: where every movable body started (Bodies::start), which bodies moved far for
+// their size (the sweep takes those), and the velocities before push-out (friction weighs contacts
+// by the momentum push-out took).
 #pragma once
 
 #include "bodies.h"
@@ -9,7 +9,9 @@
 
 #include <chain/types.h>
 
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace chain::detail {
@@ -25,9 +27,7 @@ inline constexpr double kFastKinematicShare = 1.0;
 
 struct Motion {
   // Movable slots that moved fast this step, ascending (filled when sweeping is on).
-  std::vector<std::uint32_t> fast;
-  // The largest move along an axis of any movable body that is not fast, m.
-  double slow_reach = 0.0;
+  std::span<const std::uint32_t> fast() const { return {fast_.data(), fast_count_}; }
   // Per dynamic slot, the velocity after drives and gravity (filled when keeping velocities).
   std::vector<Point> pre_velocity;
 
@@ -35,6 +35,16 @@ struct Motion {
   // start positions (and, as asked, the fast bodies and the velocities), and notes every move.
   void integrate(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt, bool find_fast,
                  bool keep_velocities);
+
+ private:
+  template <bool kDynamic, bool kFindFast, bool kKeepVelocities>
+  void integrate_range(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt,
+                       std::uint32_t begin, std::uint32_t end);
+  template <bool kFindFast, bool kKeepVelocities>
+  void integrate_all(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt);
+
+  std::vector<std::uint32_t> fast_;  // room for every movable slot; the first fast_count_ count
+  std::size_t fast_count_ = 0;
 };
 
 }  // namespace chain::detail

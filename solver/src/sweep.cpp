@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 namespace chain::detail {
 namespace {
@@ -59,7 +60,7 @@ Toi time_of_impact(const double r[2], const double u[2], const double ext[2], do
 }  // namespace
 
 bool Sweep::run(StepContext& ctx) {
-  const std::vector<std::uint32_t>& fast = ctx.motion.fast;
+  const std::span<const std::uint32_t> fast = ctx.motion.fast();
   ctx.stats.fast_bodies = static_cast<std::uint32_t>(fast.size());
   if (fast.empty()) return false;
   Bodies& bodies = ctx.bodies;
@@ -67,6 +68,14 @@ bool Sweep::run(StepContext& ctx) {
   if (fast_.size() != bodies.size()) fast_.assign(bodies.size(), 0);
   for (const std::uint32_t i : fast)
     fast_[i] = 1;
+  // How far any body that is not fast moved: a body whose swept box meets a fast body's swept box
+  // ends within that of it. Only steps with fast bodies need it, so integration does not find it.
+  slow_reach_ = 0.0;
+  for (std::uint32_t i = 0; i < bodies.movable_end; ++i) {
+    if (fast_[i]) continue;
+    slow_reach_ = std::max(slow_reach_, std::max(std::abs(bodies.x(i) - bodies.start[i].x),
+                                                 std::abs(bodies.y(i) - bodies.start[i].y)));
+  }
   gather_pairs(ctx);
   // Body by body, in slot order; candidates by slot: ties between equal times break the same way
   // for any creation order.
@@ -99,10 +108,8 @@ void Sweep::gather_pairs(StepContext& ctx) {
     if (!bodies.immovable(i)) pairs_.push_back({i, j});
     if (!bodies.immovable(j)) pairs_.push_back({j, i});
   };
-  // A slow body moved at most slow_reach: every one whose swept box meets a fast body's swept box
-  // ends within that of it.
-  const double pad = ctx.motion.slow_reach;
-  for (const std::uint32_t f : ctx.motion.fast) {
+  const double pad = slow_reach_;
+  for (const std::uint32_t f : ctx.motion.fast()) {
     const Swept s = swept(bodies, f);
     ctx.broadphase.for_each_in_box(bodies, 0.5 * (s.lo[0] + s.hi[0]), 0.5 * (s.lo[1] + s.hi[1]),
                                    0.5 * (s.hi[0] - s.lo[0]), 0.5 * (s.hi[1] - s.lo[1]), pad,
@@ -116,7 +123,7 @@ void Sweep::gather_pairs(StepContext& ctx) {
                                    });
   }
   // Fast against fast: their end boxes may lie far from each other's paths.
-  by_x_.assign(ctx.motion.fast.begin(), ctx.motion.fast.end());
+  by_x_.assign(ctx.motion.fast().begin(), ctx.motion.fast().end());
   auto low_x = [&](std::uint32_t i) {
     return std::min(bodies.start_pos(0, i), bodies.x(i)) - bodies.hx(i);
   };
@@ -237,8 +244,8 @@ void Sweep::sweep_body(StepContext& ctx, std::uint32_t f, const Pair* begin, con
   if (carried) {
     ctx.broadphase.for_each_in_box(
         bodies, 0.5 * (region.lo[0] + region.hi[0]), 0.5 * (region.lo[1] + region.hi[1]),
-        0.5 * (region.hi[0] - region.lo[0]), 0.5 * (region.hi[1] - region.lo[1]),
-        ctx.motion.slow_reach, [&](std::uint32_t j) {
+        0.5 * (region.hi[0] - region.lo[0]), 0.5 * (region.hi[1] - region.lo[1]), slow_reach_,
+        [&](std::uint32_t j) {
           if (bodies.immovable(j)) walls_.push_back(j);
         });
     std::sort(walls_.begin(), walls_.end());

@@ -39,7 +39,7 @@ namespace chain::detail {
 
 class Sweep {
  public:
-  // Sweeps the step's fast bodies (ctx.motion.fast) and what they may meet. Returns true when
+  // Sweeps the step's fast bodies (ctx.motion.fast()) and what they may meet. Returns true when
   // there were any: it then built the broadphase, and moved bodies since.
   bool run(StepContext& ctx);
 
@@ -64,6 +64,7 @@ class Sweep {
   Point slide(StepContext& ctx, std::uint32_t body, double until);
 
   std::vector<std::uint8_t> fast_;  // per slot: moved fast this step
+  double slow_reach_ = 0.0;         // the largest move along an axis of a body not fast, m
   std::vector<Pair> pairs_;
   std::vector<std::uint32_t> by_x_;  // fast bodies by the low x of their swept boxes
   std::vector<std::uint32_t> walls_;

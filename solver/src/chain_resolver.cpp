@@ -19,7 +19,7 @@ void ChainResolver::resolve(StepContext& ctx) {
         near_pairs_.reserve(4 * n);
   }
   state_.begin_step(ctx);
-  fresh_grid_ = sweep_.run(ctx);
+  fresh_grid_ = sweep_.run(ctx, state_);
   state_.leftover = true;
   for (int pass = 0; pass < ctx.def.max_passes && state_.leftover; ++pass) {
     state_.leftover = false;

@@ -59,7 +59,7 @@ Toi time_of_impact(const double r[2], const double u[2], const double ext[2], do
 
 }  // namespace
 
-bool Sweep::run(StepContext& ctx) {
+bool Sweep::run(StepContext& ctx, ChainState& state) {
   const std::span<const std::uint32_t> fast = ctx.motion.fast();
   ctx.stats.fast_bodies = static_cast<std::uint32_t>(fast.size());
   if (fast.empty()) return false;
@@ -87,7 +87,7 @@ bool Sweep::run(StepContext& ctx) {
     std::size_t end = k;
     while (end < pairs_.size() && pairs_[end].body == pairs_[k].body)
       ++end;
-    sweep_body(ctx, pairs_[k].body, pairs_.data() + k, pairs_.data() + end);
+    sweep_body(ctx, state, pairs_[k].body, pairs_.data() + k, pairs_.data() + end);
     k = end;
   }
   for (const Result& r : results_) {
@@ -168,12 +168,14 @@ double Sweep::dynamic_stop(const StepContext& ctx, std::uint32_t f, const Pair* 
   return stop;
 }
 
-Point Sweep::slide(StepContext& ctx, std::uint32_t f, double until) {
+Point Sweep::slide(StepContext& ctx, ChainState& state, std::uint32_t f, double until) {
   Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
   double p[2] = {bodies.start_pos(0, f), bodies.start_pos(1, f)};
   double w[2] = {bodies.x(f) - p[0], bodies.y(f) - p[1]};  // per whole step
   double now = 0.0;
+  std::uint32_t met[2] = {kNoSlot, kNoSlot};  // per axis, the face f is against, and its side
+  int met_side[2] = {0, 0};
   for (int slides = 0; slides < kMaxSlides; ++slides) {
     Toi first;
     first.at = kInfinity;
@@ -218,11 +220,18 @@ Point Sweep::slide(StepContext& ctx, std::uint32_t f, double until) {
     ctx.note_push(f, wall, k, first_side);
     double* vel = ctx.vel(k);
     if (ctx.def.velocity_rule == VelocityRule::kZero && vel[f] * first_side < 0.0) vel[f] = 0.0;
+    if (met[k] != kNoSlot && met_side[k] == -first_side) {
+      state.report_crush(ctx, f, met[k], wall, k);  // pressed into wall by what it met first
+      return {p[0], p[1]};
+    }
+    met[k] = wall;
+    met_side[k] = first_side;
   }
   return {p[0], p[1]};  // out of slides: it stops where it met the last face
 }
 
-void Sweep::sweep_body(StepContext& ctx, std::uint32_t f, const Pair* begin, const Pair* end) {
+void Sweep::sweep_body(StepContext& ctx, ChainState& state, std::uint32_t f, const Pair* begin,
+                       const Pair* end) {
   const Bodies& bodies = ctx.bodies;
   const double until = fast_[f] ? dynamic_stop(ctx, f, begin, end) : 1.0;
   // The immovable bodies f may meet: its own candidates, and, when a fast kinematic body may
@@ -252,7 +261,7 @@ void Sweep::sweep_body(StepContext& ctx, std::uint32_t f, const Pair* begin, con
     walls_.erase(std::unique(walls_.begin(), walls_.end()), walls_.end());
   }
   if (walls_.empty() && until >= 1.0) return;
-  const Point p = slide(ctx, f, until);
+  const Point p = slide(ctx, state, f, until);
   if (p.x != bodies.x(f) || p.y != bodies.y(f)) results_.push_back({f, p});
 }
 

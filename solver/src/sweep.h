@@ -16,6 +16,8 @@
 // is recorded like a push (touching flags, velocity rule, friction). A body may slide along up to
 // kMaxSlides faces a step and then stops for the rest of the step. A slow body that a fast
 // kinematic body reaches is swept the same way, against everything immovable around both paths.
+// A body pressed along one axis from both sides in a step (a platform lifting it into a ceiling)
+// is squeezed: it is reported as a crush event and stays where it met the second face.
 //
 // Against dynamic bodies: a fast dynamic body is swept against the straight-line motion of every
 // other dynamic body over the step (start position to integrated position). At the first meeting
@@ -30,6 +32,7 @@
 // depend on the order bodies are swept in.
 #pragma once
 
+#include "chain_state.h"
 #include "step_context.h"
 
 #include <cstdint>
@@ -41,7 +44,7 @@ class Sweep {
  public:
   // Sweeps the step's fast bodies (ctx.motion.fast()) and what they may meet. Returns true when
   // there were any: it then built the broadphase, and moved bodies since.
-  bool run(StepContext& ctx);
+  bool run(StepContext& ctx, ChainState& state);
 
   static constexpr int kMaxSlides = 4;
 
@@ -54,14 +57,16 @@ class Sweep {
     Point position;
   };
   void gather_pairs(StepContext& ctx);
-  void sweep_body(StepContext& ctx, std::uint32_t body, const Pair* begin, const Pair* end);
+  void sweep_body(StepContext& ctx, ChainState& state, std::uint32_t body, const Pair* begin,
+                  const Pair* end);
   // The step at which dynamic `body` must stop for the dynamic bodies among [begin, end): 1 if
   // none needs it.
   double dynamic_stop(const StepContext& ctx, std::uint32_t body, const Pair* begin,
                       const Pair* end) const;
   // Slides `body` from its start through [0, until] of the step along the immovable bodies in
-  // walls_; returns where it ends.
-  Point slide(StepContext& ctx, std::uint32_t body, double until);
+  // walls_; returns where it ends. A body met along one axis from both sides is squeezed: it is
+  // reported crushed and stops there.
+  Point slide(StepContext& ctx, ChainState& state, std::uint32_t body, double until);
 
   std::vector<std::uint8_t> fast_;  // per slot: moved fast this step
   double slow_reach_ = 0.0;         // the largest move along an axis of a body not fast, m

@@ -90,7 +90,8 @@ bool Sweep::run(StepContext& ctx, ChainState& state) {
     sweep_body(ctx, state, pairs_[k].body, pairs_.data() + k, pairs_.data() + end);
     k = end;
   }
-  for (const Result& r : results_) {
+  carry_.run(ctx, state, results_);
+  for (const SweepResult& r : results_) {
     bodies.pos(0, r.body) = r.position.x;
     bodies.pos(1, r.body) = r.position.y;
     ctx.broadphase.note_move(r.body, r.position.x, r.position.y);
@@ -168,7 +169,7 @@ double Sweep::dynamic_stop(const StepContext& ctx, std::uint32_t f, const Pair* 
   return stop;
 }
 
-Point Sweep::slide(StepContext& ctx, ChainState& state, std::uint32_t f, double until) {
+SweepResult Sweep::slide(StepContext& ctx, ChainState& state, std::uint32_t f, double until) {
   Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
   double p[2] = {bodies.start_pos(0, f), bodies.start_pos(1, f)};
@@ -176,6 +177,19 @@ Point Sweep::slide(StepContext& ctx, ChainState& state, std::uint32_t f, double 
   double now = 0.0;
   std::uint32_t met[2] = {kNoSlot, kNoSlot};  // per axis, the face f is against, and its side
   int met_side[2] = {0, 0};
+  // Where f ends, and the kinematic body pushing it along, if one is.
+  auto result = [&] {
+    SweepResult r{f, {p[0], p[1]}};
+    for (int k = 0; k < 2; ++k) {
+      const std::uint32_t c = met[k];
+      if (c == kNoSlot || c >= bodies.movable_end) continue;
+      if ((bodies.pos(k, c) - bodies.start_pos(k, c)) * met_side[k] > 0.0) {
+        r.carrier = c, r.axis = k, r.side = met_side[k];
+        break;
+      }
+    }
+    return r;
+  };
   for (int slides = 0; slides < kMaxSlides; ++slides) {
     Toi first;
     first.at = kInfinity;
@@ -206,7 +220,7 @@ Point Sweep::slide(StepContext& ctx, ChainState& state, std::uint32_t f, double 
     if (wall == kNoSlot) {
       for (int k = 0; k < 2; ++k)
         p[k] += (until - now) * w[k];
-      return {p[0], p[1]};
+      return result();
     }
     const int k = first.axis;
     now += first.at;
@@ -222,12 +236,12 @@ Point Sweep::slide(StepContext& ctx, ChainState& state, std::uint32_t f, double 
     if (ctx.def.velocity_rule == VelocityRule::kZero && vel[f] * first_side < 0.0) vel[f] = 0.0;
     if (met[k] != kNoSlot && met_side[k] == -first_side) {
       state.report_crush(ctx, f, met[k], wall, k);  // pressed into wall by what it met first
-      return {p[0], p[1]};
+      return SweepResult{f, {p[0], p[1]}};
     }
     met[k] = wall;
     met_side[k] = first_side;
   }
-  return {p[0], p[1]};  // out of slides: it stops where it met the last face
+  return result();  // out of slides: it stops where it met the last face
 }
 
 void Sweep::sweep_body(StepContext& ctx, ChainState& state, std::uint32_t f, const Pair* begin,
@@ -261,8 +275,9 @@ void Sweep::sweep_body(StepContext& ctx, ChainState& state, std::uint32_t f, con
     walls_.erase(std::unique(walls_.begin(), walls_.end()), walls_.end());
   }
   if (walls_.empty() && until >= 1.0) return;
-  const Point p = slide(ctx, state, f, until);
-  if (p.x != bodies.x(f) || p.y != bodies.y(f)) results_.push_back({f, p});
+  const SweepResult r = slide(ctx, state, f, until);
+  if (r.position.x != bodies.x(f) || r.position.y != bodies.y(f) || r.carrier != kNoSlot)
+    results_.push_back(r);
 }
 
 }  // namespace chain::detail

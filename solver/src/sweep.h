@@ -15,7 +15,8 @@
 // with a kinematic body along the face's axis), as a slow body resting there would. That contact
 // is recorded like a push (touching flags, velocity rule, friction). A body may slide along up to
 // kMaxSlides faces a step and then stops for the rest of the step. A slow body that a fast
-// kinematic body reaches is swept the same way, against everything immovable around both paths.
+// kinematic body reaches is swept the same way, against everything immovable around both paths,
+// and the bodies a kinematic body carries keep their order along its motion (carry.h).
 // A body pressed along one axis from both sides in a step (a platform lifting it into a ceiling)
 // is squeezed: it is reported as a crush event and stays where it met the second face.
 //
@@ -32,6 +33,7 @@
 // depend on the order bodies are swept in.
 #pragma once
 
+#include "carry.h"
 #include "chain_state.h"
 #include "step_context.h"
 
@@ -52,10 +54,6 @@ class Sweep {
   struct Pair {
     std::uint32_t body, other;  // `body` is dynamic and swept; `other` may meet it
   };
-  struct Result {
-    std::uint32_t body;
-    Point position;
-  };
   void gather_pairs(StepContext& ctx);
   void sweep_body(StepContext& ctx, ChainState& state, std::uint32_t body, const Pair* begin,
                   const Pair* end);
@@ -64,16 +62,17 @@ class Sweep {
   double dynamic_stop(const StepContext& ctx, std::uint32_t body, const Pair* begin,
                       const Pair* end) const;
   // Slides `body` from its start through [0, until] of the step along the immovable bodies in
-  // walls_; returns where it ends. A body met along one axis from both sides is squeezed: it is
-  // reported crushed and stops there.
-  Point slide(StepContext& ctx, ChainState& state, std::uint32_t body, double until);
+  // walls_; returns where it ends, and the kinematic body carrying it then, if one is. A body met
+  // along one axis from both sides is squeezed: it is reported crushed and stops there.
+  SweepResult slide(StepContext& ctx, ChainState& state, std::uint32_t body, double until);
 
   std::vector<std::uint8_t> fast_;  // per slot: moved fast this step
   double slow_reach_ = 0.0;         // the largest move along an axis of a body not fast, m
   std::vector<Pair> pairs_;
   std::vector<std::uint32_t> by_x_;  // fast bodies by the low x of their swept boxes
   std::vector<std::uint32_t> walls_;
-  std::vector<Result> results_;
+  std::vector<SweepResult> results_;
+  Carry carry_;
 };
 
 }  // namespace chain::detail

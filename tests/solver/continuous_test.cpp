@@ -215,6 +215,32 @@ TEST(Continuous, FastKinematicPlatformCarriesWhatItMeets) {
   }
 }
 
+// A stack of three boxes on a platform rising several box heights a step stays a stack: each box
+// rests on the one below, none is pushed aside. The third box overhangs the platform, resting
+// only on the second: it is carried on top of it all the same.
+TEST(Continuous, StackOnAFastPlatformStaysStacked) {
+  for (const VelocityRule rule : {VelocityRule::kZero, VelocityRule::kInelastic}) {
+    for (const double speed : {100.0, 250.0, 1000.0}) {
+      World w(world_def(Variant::kModern, rule));
+      w.create_body(static_box(0.0, -1.0, 10.0, 1.0));
+      const BodyId lift = w.create_body(kinematic_box(0.0, -3.0, 1.0, 0.5, {0.0, speed}));
+      const double x[3] = {0.0, 0.8, 1.7};  // the third box lies beyond the platform's edge
+      std::vector<BodyId> stack;
+      for (int i = 0; i < 3; ++i)
+        stack.push_back(w.create_body(dynamic_box(x[i], 0.5 + i)));
+      for (int s = 0; s < 30; ++s)
+        w.step(kDt);
+      const double top = w.position(lift).y + 0.5;
+      for (int i = 0; i < 3; ++i) {
+        const BodyId id = stack[static_cast<std::size_t>(i)];
+        EXPECT_EQ(w.position(id).x, x[i]) << rule_name(rule) << " " << speed << " box " << i;
+        EXPECT_NEAR(w.position(id).y, top + 0.5 + i, 1e-9)
+            << rule_name(rule) << " " << speed << " box " << i;
+      }
+    }
+  }
+}
+
 // A platform rising at 200 m/s lifts a box into a static ceiling that the platform itself passes
 // through: the box cannot give way, so it is reported crushed, naming the platform and the
 // ceiling, and it never goes into the ceiling.

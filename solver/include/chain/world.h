@@ -17,7 +17,8 @@
 //   - Against static and kinematic bodies: no dynamic body passes through one, at any speed up to
 //     kMaxSpeed and any dt. A fast body's motion is swept; at each static or kinematic face it
 //     meets it stops moving into that face and slides on along it (up to 4 faces a step; after
-//     the 4th it stops for the rest of the step), as a slow body resting there would. The one
+//     the 4th it stops for the rest of the step), as a slow body resting there would. What a fast
+//     kinematic body carries keeps its order along the motion: a stack on it stays a stack. The one
 //     exception is a squeeze, fast or slow: a body pressed between two immovable bodies (a
 //     platform lifting it into a ceiling) is reported as a crush event, and a kinematic body that
 //     keeps going then passes it.

@@ -47,7 +47,7 @@ std::vector<SceneParam> all_params(const SceneRecipe& recipe) {
       {"steps", static_cast<double>(recipe.steps), 1, limits::kMaxSteps, true, "steps to run"});
   params.push_back({"dt", 1.0 / 60.0, limits::kMinDt, limits::kMaxDt, false, "time step, s"});
   params.push_back(
-      {"friction", 0.0, 0, limits::kMaxFriction, false, "friction of every body (chain has none)"});
+      {"friction", 0.0, 0, limits::kMaxFriction, false, "friction coefficient of every body"});
   params.push_back({"restitution", 0.0, 0, 1, false, "restitution of every body"});
   params.push_back({"rotation", 0.0, 0, 1, true, "1: let bodies rotate, in engines that can"});
   params.push_back(

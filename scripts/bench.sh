@@ -12,7 +12,8 @@ cmake --build --preset release
 mkdir -p results
 if [[ $# -eq 0 ]]; then
   build/bin/chainbench_bench --benchmark_out=results/bench.json --benchmark_out_format=json
-  /usr/bin/python3 scripts/bench_table.py results/bench.json --readme README.md
+  /usr/bin/python3 scripts/bench_table.py results/bench.json --readme README.md \
+    --accuracy build/bin/chainbench --runs results/bench_runs
 else
   build/bin/chainbench_bench --benchmark_out=results/bench_part.json --benchmark_out_format=json "$@"
   /usr/bin/python3 scripts/bench_table.py results/bench_part.json

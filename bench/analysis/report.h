@@ -1,5 +1,5 @@
-// What `chainbench run` reports: a table for people, JSON (DESIGN.md's chainbench.run/1) and CSV
-// for tools.
+// What `chainbench run` reports: a table for people, JSON (chainbench.run/1,
+// docs/output-formats.md §2) and CSV (§3) for tools.
 #pragma once
 
 #include "metrics.h"

@@ -116,6 +116,18 @@ std::vector<StressCase> stress_cases() {
   add("squeeze", "lift_squeeze", {}, true);
   add("squeeze", "converging_walls", {"n=10"}, true);
   add("squeeze", "converging_walls", {"n=1000"}, false);
+  // What a platformer's level asks: seams between tiles, fast crates, walking off a ledge,
+  // friction on platforms and floors.
+  add("level", "seam_slide", {"direction=-1"}, true);
+  add("level", "seam_slide", {"direction=1"}, false);
+  add("level", "seam_slide", {"direction=-1", "phase=0.001"}, false);
+  add("level", "seam_landing", {"x=0.2"}, false);
+  add("level", "seam_landing", {"x=0", "speed=20"}, true);
+  add("level", "fast_drop", {"speed=25"}, false);
+  add("level", "fast_drop", {"speed=200"}, false);
+  add("level", "ledge_walk", {}, true);
+  add("level", "platform_ride", {}, true);
+  add("level", "rough_slide", {}, false);
   return cases;
 }
 

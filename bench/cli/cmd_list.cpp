@@ -59,8 +59,11 @@ int list_engines() {
       std::string values;
       for (const std::string& c : k.choices)
         values += (values.empty() ? "" : "|") + c;
-      if (values.empty())
+      if (k.file) {
+        values = "a file";
+      } else if (values.empty()) {
         values = "[" + fmt_g(k.min, 9) + ", " + fmt_g(k.max, 9) + "]" + (k.integer ? " whole" : "");
+      }
       std::string def = k.default_value.empty() ? "(required)" : k.default_value;
       for (const auto& [when, then] : k.default_when)
         def += ", " + then + " if " + k.depends_on + "=" + when;

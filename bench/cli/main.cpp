@@ -1,4 +1,5 @@
-// chainbench: runs the collision-chaining solver and Box2D on the same scenes and compares them.
+// chainbench: runs the collision-chaining solver and rigid-body engines on the same scenes and
+// compares them.
 // Exit status: 0 done; 2 bad input or usage; 3 `run --require` not met; 1 an output file that
 // could not be finished, an internal failure, or (stress) the modern solver not ok on a case;
 // 130 a sweep stopped by Ctrl-C.
@@ -12,7 +13,7 @@
 #include <iostream>
 
 int main(int argc, char** argv) {
-  CLI::App app{"chainbench: collision chaining against Box2D, in numbers"};
+  CLI::App app{"chainbench: collision chaining against rigid-body engines, in numbers"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "every subcommand's help");
   app.set_version_flag("--version", "chainbench " CHAINBENCH_VERSION);

@@ -58,6 +58,11 @@ std::string checked_value(const std::string& where, const KeyDef& key, const std
   if (key.file) {
     if (value.empty()) throw InputError(where + ": " + key.name + " is empty");
     std::error_code ec;
+    if (!std::filesystem::is_regular_file(value, ec)) {
+      throw InputError(
+          where + ": " + key.name + ": " +
+          (std::filesystem::exists(value, ec) ? "not a regular file: " : "no such file: ") + value);
+    }
     const std::filesystem::path absolute = std::filesystem::absolute(value, ec);
     return ec ? value : absolute.lexically_normal().string();
   }

@@ -1,6 +1,7 @@
 // Engine specs: "NAME[:key=value,key=value...]", e.g. "chain:variant=seed2014" or
-// "box2d:vel_iters=4,substeps=2". A parsed spec holds every key its engine declares (registry.h),
-// defaults filled in, so its canonical string names exactly what ran; a spec travels with its run.
+// "chain:velocity=zero,max_passes=8". A parsed spec holds every key its engine declares
+// (registry.h), defaults filled in, so its canonical string names exactly what ran; a spec travels
+// with its run.
 #pragma once
 
 #include <string>
@@ -21,7 +22,7 @@ struct EngineSpec {
   // Canonical: "chain:variant=modern,velocity=inelastic,...".
   std::string str() const;
   // The keys that differ from their defaults, as tables print it: "chain:variant=seed2014",
-  // "box2d". Parses back to this very spec, except that a file key shows the file's name only.
+  // "chain". Parses back to this very spec, except that a file key shows the file's name only.
   std::string label() const;
 
   friend bool operator==(const EngineSpec&, const EngineSpec&) = default;
@@ -32,7 +33,7 @@ EngineSpec parse_engine_spec(std::string_view text);
 // "NAME:key=v1,v2;key=v3,v4": every combination of the listed values, the other keys at their
 // defaults. Throws InputError for unknown engines, keys or values, or more than 10,000 specs.
 std::vector<EngineSpec> parse_grid(std::string_view text);
-// A list of specs separated by ',' or ';': "chain,chain:variant=seed2014,velocity=zero,box2d".
+// A list of specs separated by ',' or ';': "chain,chain:variant=seed2014,velocity=zero,NAME".
 // A token with '=' and no ':' continues the spec before it.
 std::vector<EngineSpec> parse_engine_list(std::string_view text);
 

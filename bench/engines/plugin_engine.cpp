@@ -85,7 +85,7 @@ Plugin open_plugin(const std::string& path) {
       throw InputError(describe(p) + ": counter " + std::to_string(k) +
                        " has no valid name (letters a-z, digits and _, under 32)");
     }
-    p.counters.push_back({name, Aggregate::kMean, "reported by the plugin", ""});
+    p.counters.push_back({name, Aggregate::kMean, "reported by the plugin", name});
   }
   return p;
 }

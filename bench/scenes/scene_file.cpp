@@ -382,6 +382,25 @@ void read_expectation(Reader& r, const json& j, const std::string& at,
   s.expect.push_back(e);
 }
 
+// A driver's velocity: two numbers, or a number and null for an axis it leaves free (a walking
+// character holds x and leaves y to gravity and contacts).
+void driven_axes(Reader& r, const json& v, const std::string& path, Driver& d) {
+  if (!v.is_array() || v.size() != 2) {
+    r.problem(path, std::string("must be an array of two numbers (or null for a free axis), got ") +
+                        Reader::type_name(v) +
+                        (v.is_array() ? " of " + std::to_string(v.size()) : ""));
+    return;
+  }
+  d.hold_x = !v[0].is_null();
+  d.hold_y = !v[1].is_null();
+  if (!d.hold_x && !d.hold_y) {
+    r.problem(path, "holds neither axis: give at least one number");
+    return;
+  }
+  if (d.hold_x) r.number(v[0], path + "[0]", d.velocity.x);
+  if (d.hold_y) r.number(v[1], path + "[1]", d.velocity.y);
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source) {
@@ -478,7 +497,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
                     "must be \"velocity\" (the only kind of driver), got \"" + kind + "\"");
         }
         if (!j.contains("velocity")) r.problem(at + ".velocity", "is required");
-        if (j.contains("velocity")) r.vec2(j["velocity"], at + ".velocity", d.velocity);
+        if (j.contains("velocity")) driven_axes(r, j["velocity"], at + ".velocity", d);
         if (j.contains("from_step"))
           r.integer(j["from_step"], at + ".from_step", 0, limits::kMaxSteps, d.from_step);
         if (j.contains("to_step"))

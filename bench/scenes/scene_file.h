@@ -1,4 +1,4 @@
-// Scene files: the JSON format of DESIGN.md (schema 1), read with nlohmann-json.
+// Scene files: the JSON format of docs/scene-format.md (schema 1), read with nlohmann-json.
 #pragma once
 
 #include "scene.h"

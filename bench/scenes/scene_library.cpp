@@ -25,7 +25,8 @@ double SceneParams::get(const std::string& key) const {
 const std::vector<SceneRecipe>& scene_library() {
   static const std::vector<SceneRecipe> library = [] {
     std::vector<SceneRecipe> all;
-    for (auto family : {stacking_scenes, pushing_scenes, seed2014_scenes, stress_scenes}) {
+    for (auto family :
+         {stacking_scenes, pushing_scenes, level_scenes, seed2014_scenes, stress_scenes}) {
       for (SceneRecipe& r : family())
         all.push_back(std::move(r));
     }
@@ -47,9 +48,9 @@ std::vector<SceneParam> all_params(const SceneRecipe& recipe) {
       {"steps", static_cast<double>(recipe.steps), 1, limits::kMaxSteps, true, "steps to run"});
   params.push_back({"dt", 1.0 / 60.0, limits::kMinDt, limits::kMaxDt, false, "time step, s"});
   params.push_back(
-      {"friction", 0.0, 0, limits::kMaxFriction, false, "friction of every body (chain has none)"});
+      {"friction", 0.0, 0, limits::kMaxFriction, false, "friction coefficient of every body"});
   params.push_back({"restitution", 0.0, 0, 1, false, "restitution of every body"});
-  params.push_back({"rotation", 0.0, 0, 1, true, "1: let Box2D rotate bodies (chain never does)"});
+  params.push_back({"rotation", 0.0, 0, 1, true, "1: let bodies rotate, in engines that can"});
   params.push_back(
       {"offset", 0.0, -1e7, 1e7, false, "move the whole scene this far along x and y, m"});
   return params;

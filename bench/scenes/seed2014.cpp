@@ -1,4 +1,4 @@
-// The 2014 engine's own test scenes (ALGORITHM-2014.md, section 7), converted from px/frame
+// The 2014 engine's own test scenes (docs/algorithm-2014.md §7; conversions §1), from px/frame
 // with y down to metres and seconds with y up: 50 px = 1 m (the engine's 50 px boxes are 1 m),
 // 60 frames a second, so gravity 0.25 px/frame^2 becomes 18 m/s^2. Positions in the original
 // are top-left corners.
@@ -76,7 +76,7 @@ Scene seed_falling_row(const SceneParams& p) {
   px_box(s, "wall_left", BodyKind::kStatic, -32, 0, 32, 448);
   px_box(s, "wall_right", BodyKind::kStatic, 640, 0, 32, 448);
   // Each row falls straight down: the low row onto the floor (top at y = -8.32 m), each high box
-  // onto the low box it overlaps by 40 px (its other neighbour is 10 px away).
+  // onto the low box it overlaps by 40 px (its right edge only touches the next low box).
   const double fall = build::fallen(kGravity, p.get("dt"), p.count("steps"));
   auto lands_at = [&](std::size_t b, double rest) {
     const Vec2d c = s.bodies[b].center;

@@ -85,6 +85,8 @@ void Bodies::append(const BodyDef& def, std::uint32_t body_id) {
   mass.push_back(dynamic ? def.mass : 0.0);
   gravity_scale.push_back(dynamic ? def.gravity_scale : 0.0);
   restitution.push_back(def.restitution);
+  friction.push_back(def.friction);
+  start.push_back({def.center.x, def.center.y});
   drive_x.push_back(0.0);
   drive_y.push_back(0.0);
   driven.push_back(0);
@@ -100,7 +102,8 @@ std::uint32_t Bodies::swap_remove(std::uint32_t slot) {
     v.pop_back();
   };
   move_last(box), move_last(vx), move_last(vy);
-  move_last(mass), move_last(gravity_scale), move_last(restitution);
+  move_last(mass), move_last(gravity_scale), move_last(restitution), move_last(friction);
+  move_last(start);
   move_last(drive_x), move_last(drive_y), move_last(driven), move_last(touching);
   move_last(type), move_last(id);
   return slot < size() ? id[slot] : kNoSlot;
@@ -117,8 +120,9 @@ void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id) {
   auto key = [&](std::uint32_t i) {
     return std::tuple(kind_rank(type[i]), z[i], order_key(y(i)), order_key(x(i)), order_key(hy(i)),
                       order_key(hx(i)), order_key(mass[i]), order_key(vx[i]), order_key(vy[i]),
-                      order_key(gravity_scale[i]), order_key(restitution[i]), driven[i],
-                      order_key(drive_x[i]), order_key(drive_y[i]), id[i]);
+                      order_key(gravity_scale[i]), order_key(restitution[i]),
+                      order_key(friction[i]), driven[i], order_key(drive_x[i]),
+                      order_key(drive_y[i]), id[i]);
   };
   std::sort(order.begin(), order.end(),
             [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
@@ -136,12 +140,14 @@ void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id) {
 }
 
 void Bodies::Spare::reserve(std::size_t n) {
-  box.reserve(n), real.reserve(n), byte.reserve(n), word.reserve(n), type.reserve(n);
+  box.reserve(n), point.reserve(n), real.reserve(n), byte.reserve(n), word.reserve(n),
+      type.reserve(n);
 }
 
 void Bodies::permute(std::span<const std::uint32_t> order, Spare& spare) {
   gather(box, order, spare.box);
-  for (auto* v : {&vx, &vy, &mass, &gravity_scale, &restitution, &drive_x, &drive_y})
+  gather(start, order, spare.point);
+  for (auto* v : {&vx, &vy, &mass, &gravity_scale, &restitution, &friction, &drive_x, &drive_y})
     gather(*v, order, spare.real);
   gather(driven, order, spare.byte), gather(touching, order, spare.byte);
   gather(type, order, spare.type), gather(id, order, spare.word);

@@ -19,6 +19,14 @@ namespace chain::detail {
 
 inline constexpr std::uint32_t kNoSlot = 0xffffffffu;
 
+struct Point {
+  double x, y;
+};
+
+// Bits of Bodies::driven: the velocity components a drive holds (chain::DriveAxes values).
+inline constexpr std::uint8_t kDriveX = 1u;
+inline constexpr std::uint8_t kDriveY = 2u;
+
 struct Bodies {
   // Centre and half extents together: every overlap test reads all four, and a chain reaches
   // bodies in no fixed order, so one cache line per body beats four.
@@ -31,8 +39,12 @@ struct Bodies {
   std::vector<double> mass;    // 0 for kinematic and static bodies
   std::vector<double> gravity_scale;
   std::vector<double> restitution;
+  std::vector<double> friction;
   std::vector<double> drive_x, drive_y;
-  std::vector<std::uint8_t> driven;
+  std::vector<std::uint8_t> driven;  // kDriveX | kDriveY bits held by the body's drive
+  // Movable bodies: the centre at the start of the current step, before integration. Which face
+  // a body came in through, and the path a fast body swept, are read from it.
+  std::vector<Point> start;
   std::vector<std::uint8_t> touching;  // touching:: bits of the last step
   std::vector<BodyType> type;
   std::vector<std::uint32_t> id;  // BodyId value of each slot
@@ -50,6 +62,10 @@ struct Bodies {
   double& pos(int axis, std::uint32_t i) { return box[i].center[axis]; }
   double pos(int axis, std::uint32_t i) const { return box[i].center[axis]; }
   double half(int axis, std::uint32_t i) const { return box[i].half[axis]; }
+  // Centre at the start of the step along axis (a static body's never changes).
+  double start_pos(int axis, std::uint32_t i) const {
+    return i < movable_end ? (axis == 0 ? start[i].x : start[i].y) : box[i].center[axis];
+  }
   bool immovable(std::uint32_t i) const { return i >= dynamic_end; }
 
   void append(const BodyDef& def, std::uint32_t body_id);
@@ -61,6 +77,7 @@ struct Bodies {
   // Buffers permute() fills and swaps in, kept between calls so that it allocates nothing.
   struct Spare {
     std::vector<Box> box;
+    std::vector<Point> point;
     std::vector<double> real;
     std::vector<std::uint8_t> byte;
     std::vector<std::uint32_t> word;

@@ -61,6 +61,12 @@ class Broadphase {
   template <class Fn>
   void for_each_overlap(const Bodies& bodies, std::uint32_t body, double tolerance, Fn&& fn) const;
 
+  // fn(j) once for every body whose box now comes within `slack` of the box (x +- hx, y +- hy)
+  // on both axes (slack 0: touching counts). Order depends only on positions and solve order.
+  template <class Fn>
+  void for_each_in_box(const Bodies& bodies, double x, double y, double hx, double hy, double slack,
+                       Fn&& fn) const;
+
   // fn(j) for the bodies near `body` as the grid saw them at build time, ignoring every move
   // since: the 2014 engine's grid, built once per frame and never updated.
   template <class Fn>
@@ -214,6 +220,20 @@ void Broadphase::for_each_overlap(const Bodies& bodies, std::uint32_t body, doub
       const std::uint32_t j = e.body;
       if (j != body && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tolerance &&
           (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tolerance) {
+        fn(j);
+      }
+    });
+  }
+}
+
+template <class Fn>
+void Broadphase::for_each_in_box(const Bodies& bodies, double x, double y, double hx, double hy,
+                                 double slack, Fn&& fn) const {
+  for (const Level& level : levels_) {
+    level.scan(level.cells_near(x, y, hx, hy, margin_ + slack), [&](const Entry& e) {
+      const std::uint32_t j = e.body;
+      if ((hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) >= -slack &&
+          (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) >= -slack) {
         fn(j);
       }
     });

@@ -1,14 +1,11 @@
 #include "chain_resolver.h"
 
+#include "entry_face.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace chain::detail {
-namespace {
-
-constexpr std::uint32_t kUnreached = 0xffffffffu;
-
-}  // namespace
 
 void ChainResolver::resolve(StepContext& ctx) {
   Bodies& bodies = ctx.bodies;
@@ -22,6 +19,7 @@ void ChainResolver::resolve(StepContext& ctx) {
         near_pairs_.reserve(4 * n);
   }
   state_.begin_step(ctx);
+  fresh_grid_ = sweep_.run(ctx, state_);
   state_.leftover = true;
   for (int pass = 0; pass < ctx.def.max_passes && state_.leftover; ++pass) {
     state_.leftover = false;
@@ -35,6 +33,12 @@ void ChainResolver::resolve(StepContext& ctx) {
     ctx.stats.contacts += static_cast<std::uint32_t>(contacts_.size());
     if (contacts_.empty()) break;
     order_contacts(ctx);
+    if (repeat_immovable_) {
+      std::size_t count = 0;
+      while (count < ordered_.size() && bodies.immovable(ordered_[count].b))
+        ++count;
+      order_entries(ctx, count);
+    }
     // Contacts with immovable bodies come first: every dynamic body there is placed against its
     // immovable body, and the walls they become propagate together, one chain, layer by layer.
     std::size_t k = 0;
@@ -68,145 +72,6 @@ void ChainResolver::forget_slots() {
   std::fill(local_mark_.begin(), local_mark_.end(), 0u);
   mark_ = 0;
   near_generation_ = 0;
-}
-
-// A grid scan gives the near pairs (closer than the slack), which chains look through instead of
-// the grid while bodies have moved less than half the slack. While no body has moved a quarter
-// of the slack since that scan, they still hold every pair that can overlap, and no new scan is
-// needed: the contacts (overlapping pairs) are always found among them.
-void ChainResolver::gather_contacts(StepContext& ctx) {
-  const Bodies& bodies = ctx.bodies;
-  const double tol = ctx.def.touch_tolerance;
-  if (near_generation_ == ctx.broadphase.generation() && ctx.broadphase.near_pairs_hold()) {
-    state_.begin_sweep(bodies, nullptr);
-  } else {
-    ctx.broadphase.build(bodies);
-    near_generation_ = ctx.broadphase.generation();
-    near_pairs_.clear();
-    ctx.broadphase.for_each_near_pair([&](std::uint32_t i, std::uint32_t j) {
-      near_pairs_.push_back({i, j});
-    });
-    state_.begin_sweep(bodies, &near_pairs_);
-  }
-  // Walked body by body in solve order, each pair taken at its later body: the earlier one was
-  // just read and is still in cache, and the contacts come out in an order that depends on the
-  // bodies alone.
-  contacts_.clear();
-  for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-    const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
-    for (const std::uint32_t j : state_.near(i)) {
-      if (j < i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
-          (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol) {
-        contacts_.push_back({j, i});
-      }
-    }
-  }
-}
-
-// A later sweep can only find the overlaps the last one's chains left behind, and those flagged
-// the bodies involved: the contacts are among the near pairs of those bodies, while they hold.
-void ChainResolver::gather_suspect_contacts(StepContext& ctx) {
-  const Broadphase& bp = ctx.broadphase;
-  if (near_generation_ != bp.generation() || !bp.near_pairs_hold()) {
-    near_generation_ = 0;  // forces a new scan
-    gather_contacts(ctx);
-    return;
-  }
-  const Bodies& bodies = ctx.bodies;
-  const double tol = ctx.def.touch_tolerance;
-  contacts_.clear();
-  for (const std::uint32_t i : state_.suspects()) {
-    for (const std::uint32_t j : state_.near(i)) {
-      if (state_.suspect(j) && j < i) continue;  // both flagged: the pair is taken once
-      const Overlap o = overlap(bodies, i, j);
-      if (o.x > tol && o.y > tol) contacts_.push_back({std::min(i, j), std::max(i, j)});
-    }
-  }
-  state_.begin_sweep(bodies, nullptr);
-}
-
-// Levels: immovable bodies 0, dynamic bodies their contact-graph distance from one (breadth
-// first), unreached last. Contacts are stably sorted by the lower level of their two bodies, and
-// a dynamic pair is oriented so that `a` is the body nearer to the immovable ones.
-void ChainResolver::order_contacts(StepContext& ctx) {
-  const Bodies& bodies = ctx.bodies;
-  // Number the dynamic bodies the contacts touch: the work is in proportion to the contacts, not
-  // to the world.
-  if (local_.size() != bodies.size()) {
-    local_.assign(bodies.size(), 0);
-    local_mark_.assign(bodies.size(), 0);
-    mark_ = 0;
-  }
-  if (++mark_ == 0) {
-    std::fill(local_mark_.begin(), local_mark_.end(), 0u);
-    mark_ = 1;
-  }
-  involved_.clear();
-  auto local = [&](std::uint32_t body) {
-    if (local_mark_[body] != mark_) {
-      local_mark_[body] = mark_;
-      local_[body] = static_cast<std::uint32_t>(involved_.size());
-      involved_.push_back(body);
-    }
-    return local_[body];
-  };
-  for (const Pair& c : contacts_) {
-    local(c.a);  // c.a < c.b and dynamic slots come first: c.a is dynamic
-    if (!bodies.immovable(c.b)) local(c.b);
-  }
-  const auto m = static_cast<std::uint32_t>(involved_.size());
-  level_.assign(m, kUnreached);
-  adj_start_.assign(m + 2, 0);
-  queue_.clear();
-  for (const Pair& c : contacts_) {
-    const std::uint32_t a = local_[c.a];
-    if (bodies.immovable(c.b)) {
-      if (level_[a] == kUnreached) {
-        level_[a] = 1;
-        queue_.push_back(a);
-      }
-    } else {
-      ++adj_start_[a + 2];
-      ++adj_start_[local_[c.b] + 2];
-    }
-  }
-  for (std::uint32_t i = 2; i < m + 2; ++i)
-    adj_start_[i] += adj_start_[i - 1];
-  adj_.resize(adj_start_[m + 1]);
-  for (const Pair& c : contacts_) {  // adj_start_[i + 1] is the fill cursor of local body i
-    if (bodies.immovable(c.b)) continue;
-    const std::uint32_t a = local_[c.a], b = local_[c.b];
-    adj_[adj_start_[a + 1]++] = b;
-    adj_[adj_start_[b + 1]++] = a;
-  }
-  for (std::size_t k = 0; k < queue_.size(); ++k) {
-    const std::uint32_t u = queue_[k];
-    for (std::uint32_t e = adj_start_[u]; e < adj_start_[u + 1]; ++e) {
-      const std::uint32_t v = adj_[e];
-      if (level_[v] != kUnreached) continue;
-      level_[v] = level_[u] + 1;
-      queue_.push_back(v);
-    }
-  }
-
-  std::uint32_t top = 0;
-  for (const std::uint32_t u : queue_)
-    top = std::max(top, level_[u]);
-  const std::uint32_t last = top + 1;  // the bucket of contacts no immovable body reaches
-  auto bucket = [&](const Pair& c) {
-    return bodies.immovable(c.b) ? 0u : std::min({level_[local_[c.a]], level_[local_[c.b]], last});
-  };
-  level_count_.assign(last + 2, 0);
-  for (const Pair& c : contacts_)
-    ++level_count_[bucket(c) + 1];
-  for (std::size_t l = 1; l < level_count_.size(); ++l)
-    level_count_[l] += level_count_[l - 1];
-  ordered_.resize(contacts_.size());
-  for (const Pair& c : contacts_) {
-    Pair o = c;
-    if (!bodies.immovable(c.b) && level_[local_[c.b]] < level_[local_[c.a]]) std::swap(o.a, o.b);
-    ordered_[level_count_[bucket(c)]++] = o;
-  }
 }
 
 void ChainResolver::run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b) {
@@ -272,12 +137,19 @@ bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, dou
   const double tol = ctx.def.touch_tolerance;
   const Overlap o = overlap(bodies, a, b);
   if (o.x <= tol || o.y <= tol) return false;
-  const int push_axis = overlap_axis(o);
+  int push_axis = overlap_axis(o);
+  int sign = 0;
+  if (bodies.immovable(b)) {
+    const Face face = entry_face(ctx, a, b);  // out the way it came in, not the shortest way
+    push_axis = face.axis;
+    sign = face.sign;
+  } else {
+    sign = ChainState::away(ctx, push_axis, b, a);
+  }
   if (axis != kAnyAxis && push_axis != axis) {
     state_.flag(a, b);  // an overlap across the chaining axis: the next sweep takes it
     return false;
   }
-  const int sign = ChainState::away(ctx, push_axis, b, a);
   f.chain_axis = static_cast<std::int8_t>(push_axis);
   f.sign = static_cast<std::int8_t>(sign);
   if (!force_static && state_.supported_towards(push_axis, b, -sign)) {

@@ -1,10 +1,12 @@
 // The modern collision-chaining resolver.
 //
-// A sweep finds every overlapping pair and resolves them in shock-propagation order: contacts
-// with immovable bodies first, then outward by contact-graph distance from them. Resolving a
-// pair starts a chain:
-//   - against an immovable body (or a body supported from that side), the dynamic body takes the
-//     whole push and acts as a wall from then on (force_static.h);
+// Fast bodies are swept first (sweep.h). Then a sweep finds every overlapping pair and resolves
+// them in shock-propagation order: contacts with immovable bodies first (each body's in the order
+// it entered them), then outward by contact-graph distance from them. Resolving a pair starts a
+// chain:
+//   - against an immovable body, the dynamic body is pushed out through the face it came in
+//     through (entry_face.h), takes the whole push and acts as a wall from then on
+//     (force_static.h); against a body supported from that side, the same along least overlap;
 //   - between two dynamic bodies, the push is split by mass, where the mass of a side includes
 //     every body already moving with it (the additional mass), and each pushed body carries the
 //     chain on to the bodies it now overlaps: first a's side (pushed back), then b's (pushed on).
@@ -22,6 +24,7 @@
 #include "chain_state.h"
 #include "force_static.h"
 #include "step_context.h"
+#include "sweep.h"
 
 #include <cstdint>
 #include <span>
@@ -58,6 +61,9 @@ class ChainResolver {
   void gather_contacts(StepContext& ctx);
   void gather_suspect_contacts(StepContext& ctx);
   void order_contacts(StepContext& ctx);
+  // Sorts the contacts with immovable bodies (the first `count` of ordered_) by body, then by
+  // when the body entered each.
+  void order_entries(StepContext& ctx, std::size_t count);
   void run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b);
   // Resolves (a, b): returns true when the push was split and the frame must go on to chain;
   // a force-static push queues its walls, which the caller runs.
@@ -72,6 +78,15 @@ class ChainResolver {
 
   ChainState state_;
   ForceStatic walls_;
+  Sweep sweep_;
+  // The sweep built the broadphase this step, and its near pairs are not scanned yet.
+  bool fresh_grid_ = false;
+  bool repeat_immovable_ = false;  // some body has several immovable contacts in this sweep
+  struct Entry {
+    Pair pair;
+    double when;
+  };
+  std::vector<Entry> entries_;
   std::vector<Pair> contacts_, ordered_, near_pairs_;
   // Contact ordering, over the bodies the contacts touch (numbered through local_).
   std::vector<std::uint32_t> involved_, local_, local_mark_;

@@ -1,5 +1,5 @@
-// The 2014 engine's collision chaining, as seed/ALGORITHM-2014.md reconstructs it (HEAD,
-// commit bc64bd3), converted to metres with y up. Kept on purpose, each marked QUIRK in the
+// The 2014 engine's collision chaining, as docs/algorithm-2014.md §2 describes it (its code at
+// commit bc64bd3, §0), converted to metres with y up. Kept on purpose, each marked QUIRK in the
 // source: the push direction chosen from box edges rather than centres, touching counted as
 // overlapping, the extra mass passed asymmetrically, the "chained" short-circuit, no visited
 // set, a grid built once per step and never updated, every dynamic pair visited in both orders,

@@ -3,6 +3,7 @@
 
 #include "bodies.h"
 #include "broadphase.h"
+#include "motion.h"
 #include "velocity_response.h"
 
 #include <chain/types.h>
@@ -29,6 +30,8 @@ struct StepContext {
   StepStats& stats;
   std::vector<CrushRecord>& crushes;
   std::uint64_t budget;  // pair resolutions left this step
+  const Motion& motion;  // what integration did this step
+  bool record_links;     // pushes are recorded for the inelastic rule or friction
 
   double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
 
@@ -57,7 +60,7 @@ struct StepContext {
                                           : (sign > 0 ? touching::kTop : touching::kBottom);
     bodies.touching[a] |= a_side;
     bodies.touching[b] |= b_side;
-    if (def.velocity_rule == VelocityRule::kInelastic) response.add(a, b, axis, sign);
+    if (record_links) response.add(a, b, axis, sign);
   }
 };
 

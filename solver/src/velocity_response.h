@@ -18,6 +18,9 @@ namespace chain::detail {
 class VelocityResponse {
  public:
   void clear() { links_.clear(); }
+  // Sizes the link list for a body set of n, as the resolver sizes its contact lists: a step then
+  // records two pushes a body without allocating.
+  void reserve(std::size_t n) { links_.reserve(2 * n); }
   // `a` was pushed out of `b` along axis (0 = x, 1 = y) in direction sign.
   void add(std::uint32_t a, std::uint32_t b, int axis, double sign) {
     links_.push_back(
@@ -25,12 +28,15 @@ class VelocityResponse {
   }
   void apply(Bodies& bodies, double restitution_threshold);
 
- private:
-  struct Link {
+  struct Link {  // a was pushed out of b along axis, in direction sign
     std::uint32_t a, b;
     std::uint8_t axis;
     std::int8_t sign;
   };
+  // The pushes of the step so far, in the order they happened.
+  const std::vector<Link>& links() const { return links_; }
+
+ private:
   void apply_axis(Bodies& bodies, int axis, double restitution_threshold);
   std::uint32_t find(std::uint32_t i);
 

@@ -3,96 +3,26 @@
 #include "bodies.h"
 #include "broadphase.h"
 #include "chain_resolver.h"
+#include "friction.h"
 #include "layout.h"
+#include "motion.h"
 #include "seed2014_resolver.h"
 #include "step_context.h"
+#include "validate.h"
 #include "velocity_response.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace chain {
-namespace {
 
-std::string number(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
-}
-
-// Empty if v is finite and within [lo, hi]; else "<field> must be ..., got v".
-std::string check_range(const char* field, double v, double lo, double hi, const char* what) {
-  if (!std::isfinite(v)) return std::string(field) + " must be a finite number, got " + number(v);
-  if (v < lo || v > hi) return std::string(field) + " must be " + what + ", got " + number(v);
-  return {};
-}
-
-}  // namespace
-
-std::string validate(const BodyDef& def) {
-  const bool dynamic = def.type == BodyType::kDynamic;
-  if (def.type != BodyType::kStatic && def.type != BodyType::kKinematic && !dynamic) {
-    return "type must be static, kinematic or dynamic";
-  }
-  for (const std::string& e :
-       {check_range("center.x", def.center.x, -kMaxCoordinate, kMaxCoordinate, "within +-1e9 m"),
-        check_range("center.y", def.center.y, -kMaxCoordinate, kMaxCoordinate, "within +-1e9 m"),
-        check_range("half_extents.x", def.half_extents.x, 0.0, kMaxHalfExtent, "> 0 and <= 1e8 m"),
-        check_range("half_extents.y", def.half_extents.y, 0.0, kMaxHalfExtent, "> 0 and <= 1e8 m"),
-        check_range("velocity.x", def.velocity.x, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s"),
-        check_range("velocity.y", def.velocity.y, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s"),
-        check_range("restitution", def.restitution, 0.0, 1.0, "in [0, 1]")}) {
-    if (!e.empty()) return e;
-  }
-  if (def.half_extents.x <= 0.0)
-    return "half_extents.x must be > 0, got " + number(def.half_extents.x);
-  if (def.half_extents.y <= 0.0)
-    return "half_extents.y must be > 0, got " + number(def.half_extents.y);
-  if (def.type == BodyType::kStatic && (def.velocity.x != 0.0 || def.velocity.y != 0.0)) {
-    return "velocity must be zero for a static body (make it kinematic to move it)";
-  }
-  if (dynamic) {
-    if (!std::isfinite(def.mass) || def.mass <= 0.0 || def.mass > kMaxMass) {
-      return "mass must be > 0 and <= 1e18 kg for a dynamic body, got " + number(def.mass);
-    }
-    std::string e = check_range("gravity_scale", def.gravity_scale, -1.0e6, 1.0e6, "within +-1e6");
-    if (!e.empty()) return e;
-  }
-  return {};
-}
-
-std::string validate(const WorldDef& def) {
-  if (def.variant != Variant::kModern && def.variant != Variant::kSeed2014) {
-    return "variant must be modern or seed2014";
-  }
-  if (def.velocity_rule != VelocityRule::kZero && def.velocity_rule != VelocityRule::kInelastic) {
-    return "velocity_rule must be zero or inelastic";
-  }
-  for (const auto& e :
-       {check_range("gravity.x", def.gravity.x, -kMaxGravity, kMaxGravity, "within +-1e6 m/s^2"),
-        check_range("gravity.y", def.gravity.y, -kMaxGravity, kMaxGravity, "within +-1e6 m/s^2"),
-        check_range("touch_tolerance", def.touch_tolerance, 0.0, 1.0, "in [0, 1] m"),
-        check_range("restitution_threshold", def.restitution_threshold, 0.0, 1.0e6,
-                    "in [0, 1e6] m/s")}) {
-    if (!e.empty()) return e;
-  }
-  if (def.max_passes < 1 || def.max_passes > 1000) {
-    return "max_passes must be in [1, 1000], got " + std::to_string(def.max_passes);
-  }
-  if (def.budget_per_body < 1 || def.budget_per_body > 1000000) {
-    return "budget_per_body must be in [1, 1000000], got " + std::to_string(def.budget_per_body);
-  }
-  // Each level is a native stack frame; deeper than this risks the thread's stack.
-  if (def.seed_max_depth < 1 || def.seed_max_depth > 16384) {
-    return "seed_max_depth must be in [1, 16384], got " + std::to_string(def.seed_max_depth);
-  }
-  return {};
-}
+using detail::check_range;
+using detail::number;
 
 struct World::Impl {
   WorldDef def;
@@ -102,6 +32,9 @@ struct World::Impl {
   bool dirty = false;
   detail::Broadphase broadphase;
   detail::VelocityResponse response;
+  detail::Motion motion;
+  detail::Friction friction;
+  std::size_t rough_bodies = 0;  // bodies with friction > 0: friction runs only while there are
   detail::ChainResolver modern;
   detail::Seed2014Resolver seed2014;
   detail::Layout layout;
@@ -120,6 +53,7 @@ struct World::Impl {
     bodies.canonicalize(slot_of_id);
     broadphase.configure(bodies);
     layout.reset(bodies.size());
+    response.reserve(bodies.size());
     list_creation_order();
     dirty = false;
   }
@@ -139,23 +73,6 @@ struct World::Impl {
     list_creation_order();
     broadphase.renumber(order);
     modern.forget_slots();
-  }
-
-  void integrate(double dt) {
-    detail::Bodies& b = bodies;
-    for (std::uint32_t i = 0; i < b.movable_end; ++i) {
-      if (b.driven[i]) {
-        b.vx[i] = b.drive_x[i];
-        b.vy[i] = b.drive_y[i];
-      }
-      if (i < b.dynamic_end) {
-        b.vx[i] += def.gravity.x * b.gravity_scale[i] * dt;
-        b.vy[i] += def.gravity.y * b.gravity_scale[i] * dt;
-      }
-      b.pos(0, i) += b.vx[i] * dt;
-      b.pos(1, i) += b.vy[i] * dt;
-      broadphase.note_move(i, b.x(i), b.y(i));
-    }
   }
 };
 
@@ -179,40 +96,46 @@ BodyId World::create_body(const BodyDef& def) {
   if (id == BodyId::kInvalid) throw std::length_error("a world holds at most 2^32 - 1 bodies");
   impl_->slot_of_id.push_back(impl_->bodies.size());
   impl_->bodies.append(def, id);
+  if (def.friction > 0.0) ++impl_->rough_bodies;
   impl_->dirty = true;
   return BodyId{id};
 }
 
 void World::destroy_body(BodyId id) {
   const std::uint32_t s = impl_->slot(id);
+  if (impl_->bodies.friction[s] > 0.0) --impl_->rough_bodies;
   const std::uint32_t moved = impl_->bodies.swap_remove(s);
   if (moved != detail::kNoSlot) impl_->slot_of_id[moved] = s;
   impl_->slot_of_id[id.value] = detail::kNoSlot;
   impl_->dirty = true;
 }
 
-bool World::contains(BodyId id) const {
+bool World::contains(BodyId id) const noexcept {
   return id.value < impl_->slot_of_id.size() && impl_->slot_of_id[id.value] != detail::kNoSlot;
 }
 
-std::size_t World::body_count() const {
+std::size_t World::body_count() const noexcept {
   return impl_->bodies.size();
 }
 
-void World::set_drive(BodyId id, Vec2 velocity) {
+void World::set_drive(BodyId id, Vec2 velocity, DriveAxes axes) {
   const std::uint32_t s = impl_->slot(id);
   if (impl_->bodies.type[s] == BodyType::kStatic) {
     throw std::invalid_argument("a static body cannot be driven");
   }
-  if (std::string e =
-          check_range("drive velocity.x", velocity.x, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s") +
-          check_range("drive velocity.y", velocity.y, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s");
-      !e.empty()) {
-    throw std::invalid_argument(e);
+  const auto held = static_cast<std::uint8_t>(axes);
+  if (axes != DriveAxes::kX && axes != DriveAxes::kY && axes != DriveAxes::kBoth) {
+    throw std::invalid_argument("drive axes must be x, y or both, got " + std::to_string(held));
   }
-  impl_->bodies.driven[s] = 1;
-  impl_->bodies.drive_x[s] = velocity.x;
-  impl_->bodies.drive_y[s] = velocity.y;
+  std::string e;
+  if (held & detail::kDriveX)
+    e += check_range("drive velocity.x", velocity.x, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s");
+  if (held & detail::kDriveY)
+    e += check_range("drive velocity.y", velocity.y, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s");
+  if (!e.empty()) throw std::invalid_argument(e);
+  impl_->bodies.driven[s] = held;
+  impl_->bodies.drive_x[s] = (held & detail::kDriveX) ? velocity.x : 0.0;
+  impl_->bodies.drive_y[s] = (held & detail::kDriveY) ? velocity.y : 0.0;
 }
 
 void World::clear_drive(BodyId id) {
@@ -248,8 +171,7 @@ std::uint8_t World::touching_flags(BodyId id) const {
   return impl_->bodies.touching[impl_->slot(id)];
 }
 
-void World::read_state(std::span<const BodyId> ids, std::span<Vec2> positions,
-                       std::span<Vec2> velocities) const {
+void World::read_state(Span<const BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities) const {
   const detail::Bodies& b = impl_->bodies;
   if ((!positions.empty() && positions.size() < ids.size()) ||
       (!velocities.empty() && velocities.size() < ids.size())) {
@@ -273,12 +195,16 @@ void World::step(double dt) {
   w.response.clear();
   std::fill(w.bodies.touching.begin(), w.bodies.touching.end(), std::uint8_t{0});
 
-  w.integrate(dt);
+  const bool modern = w.def.variant == Variant::kModern;
+  const bool rough = modern && w.rough_bodies > 0;
+  w.motion.integrate(w.bodies, w.broadphase, w.def.gravity, dt, modern, rough);
   const std::uint64_t budget =
       static_cast<std::uint64_t>(w.def.budget_per_body) * w.bodies.size() + 1024u;
-  detail::StepContext ctx{w.bodies, w.broadphase,    w.response, w.def,
-                          w.stats,  w.crush_records, budget};
-  if (w.def.variant == Variant::kModern) {
+  detail::StepContext ctx{
+      w.bodies, w.broadphase, w.response,
+      w.def,    w.stats,      w.crush_records,
+      budget,   w.motion,     w.def.velocity_rule == VelocityRule::kInelastic || rough};
+  if (modern) {
     w.modern.resolve(ctx);
   } else {
     w.seed2014.resolve(ctx, w.creation_order);
@@ -286,12 +212,14 @@ void World::step(double dt) {
   if (w.def.velocity_rule == VelocityRule::kInelastic) {
     w.response.apply(w.bodies, w.def.restitution_threshold);
   }
+  if (rough)
+    w.friction.apply(w.bodies, w.broadphase, w.response.links(), w.motion.pre_velocity, dt);
   w.crushes.clear();
   for (const detail::CrushRecord& r : w.crush_records) {
     w.crushes.push_back({BodyId{w.bodies.id[r.body]}, BodyId{w.bodies.id[r.anchor]},
                          BodyId{w.bodies.id[r.blocker]}, r.axis});
   }
-  if (w.def.variant == Variant::kModern) {
+  if (modern) {
     const std::span<const std::uint32_t> order =
         w.layout.plan(w.bodies, w.modern.reach_order(), w.modern.reach_descents());
     if (!order.empty()) {
@@ -301,13 +229,13 @@ void World::step(double dt) {
   }
 }
 
-const StepStats& World::last_step_stats() const {
+const StepStats& World::last_step_stats() const noexcept {
   return impl_->stats;
 }
-std::span<const CrushEvent> World::crush_events() const {
-  return impl_->crushes;
+Span<const CrushEvent> World::crush_events() const noexcept {
+  return {impl_->crushes.data(), impl_->crushes.size()};
 }
-const WorldDef& World::def() const {
+const WorldDef& World::def() const noexcept {
   return impl_->def;
 }
 

@@ -266,6 +266,9 @@ TEST(Cli, ListAndEnginesDescribeWhatCanRun) {
   EXPECT_EQ(engines.status, 0);
   EXPECT_NE(engines.out.find("chain:variant=modern,velocity=inelastic"), std::string::npos)
       << engines.out;
+  for (const char* engine : {"box2d", "chipmunk", "plugin"}) {
+    EXPECT_NE(engines.out.find(engine), std::string::npos) << engine;
+  }
   EXPECT_NE(engines.out.find("vel_iters"), std::string::npos);
   EXPECT_EQ(chainbench("--help").status, 0);
 }
@@ -357,6 +360,57 @@ TEST(Cli, RunWritesAReplayPageOfItsEngines) {
   EXPECT_TRUE(j["reference"].is_null());
   EXPECT_FALSE(j["engines"][0]["series"].contains("error_max"));
   EXPECT_EQ(j["engines"][0]["series"]["efd"].size(), 21u);
+}
+
+}  // namespace
+
+namespace {
+
+const std::string kRelaxation = std::string("plugin:path=") + CHAINBENCH_RELAXATION_PLUGIN;
+
+// A plugin runs in every command like a built-in engine, labelled by its library's name, with
+// its counters in the JSON.
+TEST(Cli, APluginRunsInRunSweepAndStress) {
+  const std::string run_json = temp("plugin_run.json");
+  const Result run = chainbench("run --scene stack --set n=3 --engines chain," + kRelaxation +
+                                ",iterations=8 --json " + run_json);
+  ASSERT_EQ(run.status, 0) << run.out;
+  nlohmann::json j;
+  std::ifstream(run_json) >> j;
+  ASSERT_EQ(j["runs"].size(), 2u);
+  EXPECT_EQ(j["runs"][1]["label"], "plugin:path=librelaxation.so,iterations=8");
+  EXPECT_TRUE(j["runs"][1]["counters"].contains("pushes")) << j["runs"][1]["counters"];
+  EXPECT_NE(run.out.find("pushes"), std::string::npos) << run.out;  // a column of the table
+
+  const std::string sweep_json = temp("plugin_sweep.json");
+  const Result sweep = chainbench("sweep --scene stack --set n=3 --steps 30 --grid \"" +
+                                  kRelaxation + ";iterations=1,4\" --json " + sweep_json);
+  ASSERT_EQ(sweep.status, 0) << sweep.out;
+  nlohmann::json s;
+  std::ifstream(sweep_json) >> s;
+  EXPECT_EQ(s["scenes"][0]["points"].size(), 2u) << s.dump().substr(0, 2000);
+
+  const Result stress =
+      chainbench("stress --quick --filter projectile --engines chain," + kRelaxation);
+  EXPECT_EQ(stress.status, 0) << stress.out;
+  EXPECT_NE(stress.out.find("plugin:path=librelaxation.so"), std::string::npos) << stress.out;
+}
+
+TEST(Cli, PluginFaultsExitTwoWithTheirReason) {
+  const std::string dir = CHAINBENCH_TEST_PLUGINS;
+  for (const auto& [fault, message] :
+       {std::pair<std::string, std::string>{"missing", "no such file"},
+        {"no_entry", "exports no chainbench_engine_plugin()"},
+        {"abi", "built for plugin ABI 2"},
+        {"create", "this plugin builds no worlds"},
+        {"nan", "non-finite state for body"}}) {
+    SCOPED_TRACE(fault);
+    const Result r = chainbench("run --scene stack --set n=2 --engines plugin:path=" + dir +
+                                "/libtest_plugin_" + fault + ".so --reference none");
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("internal error"), std::string::npos) << r.out;
+  }
 }
 
 }  // namespace

@@ -11,7 +11,7 @@
 namespace chainbench {
 namespace {
 
-// DESIGN.md's example, with every optional key used once.
+// A file with every optional key used once (docs/scene-format.md §1-§5).
 const char* kValid = R"({
   "schema": 1,
   "name": "push-two",
@@ -145,6 +145,18 @@ TEST(SceneFile, ValidFileReadsAsWritten) {
   EXPECT_EQ(s.expect[0].body, 1u);
 }
 
+// null leaves an axis free: the driver holds x and gravity and contacts keep y.
+TEST(SceneFile, DriverWithANullAxisHoldsTheOtherOnly) {
+  const Scene s =
+      parse_scene(edited("\"velocity\": [2, 0]", "\"velocity\": [2, null]"), "scene.json");
+  ASSERT_EQ(s.drivers.size(), 1u);
+  EXPECT_TRUE(s.drivers[0].hold_x);
+  EXPECT_FALSE(s.drivers[0].hold_y);
+  EXPECT_EQ(s.drivers[0].velocity.x, 2.0);
+  const Scene both = parse_scene(kValid, "scene.json");
+  EXPECT_TRUE(both.drivers[0].hold_x && both.drivers[0].hold_y);
+}
+
 TEST(SceneFile, OmittedKeysTakeTheDesignDefaults) {
   const Scene s = parse_scene(
       R"({"bodies": [{"type": "static", "center": [0,0], "half_extents": [1,1]}]})", "f");
@@ -212,6 +224,13 @@ INSTANTIATE_TEST_SUITE_P(
                 "drivers[0].body", "static"},
         BadFile{"DriverKind", edited("\"kind\": \"velocity\"", "\"kind\": \"force\""),
                 "drivers[0].kind", "\"velocity\""},
+        BadFile{"DriverHoldsNoAxis", edited("\"velocity\": [2, 0]", "\"velocity\": [null, null]"),
+                "drivers[0].velocity", "holds neither axis"},
+        BadFile{"DriverAxisNotANumber",
+                edited("\"velocity\": [2, 0]", "\"velocity\": [\"fast\", null]"),
+                "drivers[0].velocity[0]", "must be a number"},
+        BadFile{"DriverVelocityShort", edited("\"velocity\": [2, 0]", "\"velocity\": [2]"),
+                "drivers[0].velocity", "null for a free axis"},
         BadFile{"DriverWindowBackwards",
                 edited("\"from_step\": 0, \"to_step\": 60", "\"from_step\": 30, \"to_step\": 10"),
                 "drivers[0].to_step", ">= from_step"},

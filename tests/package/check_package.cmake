@@ -1,6 +1,7 @@
-# Installs the build tree into a scratch prefix, then configures, builds and runs a consumer
-# project that finds it with find_package(chainbench). Run by ctest (script mode).
-foreach(var BUILD_DIR CONSUMER_DIR WORK_DIR GENERATOR)
+# Configures, builds and installs the solver folder on its own (no Box2D, GoogleTest or Google
+# Benchmark anywhere), then configures, builds and runs a consumer project, compiled as C++17,
+# that finds it with find_package(chainbench). Run by ctest (script mode).
+foreach(var SOLVER_DIR CONSUMER_DIR WORK_DIR GENERATOR CXX_COMPILER)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "check_package.cmake needs -D${var}=...")
   endif()
@@ -13,9 +14,20 @@ function(run)
     message(FATAL_ERROR "failed (${rc}): ${ARGN}\n${out}\n${err}")
   endif()
 endfunction()
-run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}")
+run(${CMAKE_COMMAND} -S "${SOLVER_DIR}" -B "${WORK_DIR}/solver" -G "${GENERATOR}"
+    -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}")
+run(${CMAKE_COMMAND} --build "${WORK_DIR}/solver")
+run(${CMAKE_COMMAND} --install "${WORK_DIR}/solver" --prefix "${prefix}")
+file(GLOB version_file "${prefix}/lib*/cmake/chainbench/chainbenchConfigVersion.cmake")
+file(READ "${version_file}" version_text)
+file(STRINGS "${SOLVER_DIR}/CMakeLists.txt" version_line REGEX "set\\(CHAINBENCH_SOLVER_VERSION")
+string(REGEX MATCH "[0-9]+\\.[0-9]+\\.[0-9]+" solver_version "${version_line}")
+if(NOT version_text MATCHES "PACKAGE_VERSION \"${solver_version}\"")
+  message(FATAL_ERROR "the installed package is not version ${solver_version}:\n${version_text}")
+endif()
 run(${CMAKE_COMMAND} -S "${CONSUMER_DIR}" -B "${WORK_DIR}/build" -G "${GENERATOR}"
-    -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}")
+    -DCMAKE_BUILD_TYPE=Release "-DCMAKE_PREFIX_PATH=${prefix}"
+    "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}")
 run(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
 run("${WORK_DIR}/build/consumer")
-message(STATUS "find_package(chainbench) consumer built and ran against ${prefix}")
+message(STATUS "solver ${solver_version} installed alone; the C++17 consumer built and ran")

@@ -19,7 +19,7 @@ struct Scene {
   std::vector<Vec2> start;
 };
 
-// Box2D v3's large_pyramid layout: rows of touching unit boxes on a static ground.
+// The large-pyramid layout of engine benchmarks: rows of touching unit boxes on a static ground.
 Scene build_pyramid(World& w, int base) {
   Scene s;
   s.ids.push_back(add_floor(w, 2.0 * static_cast<double>(base)));

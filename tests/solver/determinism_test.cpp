@@ -42,13 +42,73 @@ std::vector<BodyDef> mixed_scene() {
 
 constexpr std::size_t kPusher = 14;
 
+struct Drive {
+  std::size_t body;
+  Vec2 velocity;
+  DriveAxes axes;
+};
+
+// A level: a floor of flush tiles of uneven widths with boxes sliding and landing across the
+// joins, a wall of stacked tiles with a box driven into it, rough crates on a moving platform and
+// on the floor, a character walking (x held) off a ledge, a projectile fired into a stack and a
+// crate falling fast onto a thin slab.
+std::vector<BodyDef> level_scene(std::vector<Drive>& drives) {
+  std::vector<BodyDef> defs;
+  double x = -20.0;
+  for (int i = 0; i < 14; ++i) {  // floor tiles, top at y = 0
+    const double width = 0.4 + 0.37 * static_cast<double>((i * 7) % 5);
+    BodyDef tile = static_box(x + 0.5 * width, -0.5, 0.5 * width, 0.5);
+    tile.friction = i % 2 == 0 ? 0.0 : 0.6;
+    defs.push_back(tile);
+    x += width;
+  }
+  for (int i = 0; i < 6; ++i)  // a wall of stacked tiles, its face at x = -20
+    defs.push_back(static_box(-20.5, 0.7 * i + 0.35, 0.5, 0.35));
+  BodyDef slider = dynamic_box(-15.0, 0.25, 0.25, 2.0);
+  slider.velocity = {4.0, 0.0};
+  defs.push_back(slider);
+  BodyDef fast_slider = dynamic_box(-10.0, 0.2, 0.2);
+  fast_slider.velocity = {-35.0, 0.0};
+  defs.push_back(fast_slider);
+  defs.push_back(dynamic_box(-13.37, 3.0, 0.3));   // lands across a join
+  BodyDef climber = dynamic_box(-19.7, 5.0, 0.3);  // driven into the wall, slides down it
+  defs.push_back(climber);
+  drives.push_back({defs.size() - 1, {-1.0, 0.0}, DriveAxes::kX});
+  BodyDef platform = kinematic_box(5.0, -0.5, 3.0, 0.5, {1.5, 0.0});
+  platform.friction = 1.0;
+  defs.push_back(platform);
+  for (int i = 0; i < 3; ++i) {
+    BodyDef crate = dynamic_box(5.0, 0.25 + 0.5 * i, 0.25, 1.0 + i);
+    crate.friction = 0.8;
+    defs.push_back(crate);
+  }
+  defs.push_back(static_box(20.0, 1.0, 3.0, 0.5));  // a ledge, top at 1.5
+  defs.push_back(dynamic_box(19.0, 1.75, 0.25));
+  drives.push_back({defs.size() - 1, {3.0, 0.0}, DriveAxes::kX});
+  for (int i = 0; i < 4; ++i)
+    defs.push_back(dynamic_box(30.0, 0.5 + i));
+  defs.push_back(static_box(31.0, 2.0, 0.5, 2.0));  // backstop
+  BodyDef shot = dynamic_box(26.5, 1.5, 0.1);
+  shot.gravity_scale = 0.0;
+  shot.velocity = {400.0, 0.0};
+  defs.push_back(shot);
+  defs.push_back(static_box(40.0, 0.0, 1.0, 0.05));  // thin slab
+  BodyDef faller = dynamic_box(40.0, 3.0, 0.25);
+  faller.velocity = {0.5, -30.0};
+  defs.push_back(faller);
+  return defs;
+}
+
 std::vector<Vec2> run_in_order(const std::vector<BodyDef>& defs,
-                               const std::vector<std::size_t>& order, WorldDef def, int steps) {
+                               const std::vector<std::size_t>& order, WorldDef def, int steps,
+                               const std::vector<Drive>& drives = {
+                                   {kPusher, {1.5, 0.0}, DriveAxes::kBoth}}) {
   World w(def);
   std::vector<BodyId> id_of(defs.size());
   for (const std::size_t k : order)
     id_of[k] = w.create_body(defs[k]);
-  w.set_drive(id_of[kPusher], {1.5, 0.0});
+  for (const Drive& d : drives)
+    w.set_drive(id_of[d.body], d.velocity, d.axes);
   for (int s = 0; s < steps; ++s)
     w.step(kDt);
   std::vector<Vec2> out;
@@ -102,6 +162,18 @@ TEST_P(OrderIndependence, EveryCreationOrderGivesTheSameBits) {
   }
 }
 
+TEST_P(OrderIndependence, LevelWithSeamsFastBodiesFrictionAndDrivesGivesTheSameBits) {
+  std::vector<Drive> drives;
+  const std::vector<BodyDef> defs = level_scene(drives);
+  const WorldDef def = world_def(Variant::kModern, GetParam());
+  const auto orders = permutations(defs.size());
+  const std::vector<Vec2> reference = run_in_order(defs, orders[0], def, 180, drives);
+  for (std::size_t k = 1; k < orders.size(); ++k) {
+    EXPECT_TRUE(same_bits(reference, run_in_order(defs, orders[k], def, 180, drives)))
+        << "permutation " << k;
+  }
+}
+
 TEST(Determinism, RepeatedRunsGiveTheSameBits) {
   const std::vector<BodyDef> defs = mixed_scene();
   const auto order = permutations(defs.size())[3];
@@ -132,7 +204,7 @@ TEST(Determinism, CopiedWorldContinuesIdentically) {
   }
 }
 
-// ALGORITHM-2014.md, bug 2: a body squeezed between two statics ends inside one of them, and
+// docs/algorithm-2014.md Quirk 2 (§3.5): a body squeezed between two statics ends inside one of them, and
 // which one depends on the order the pairs are met. Modern centres it, whatever the order.
 TEST(Determinism, SqueezeOutcomeDependsOnCreationOrderOnlyInSeed2014) {
   const std::vector<BodyDef> defs = {static_box(0.0, -1.0, 5.0, 1.0),  // floor, top at 0

@@ -1,4 +1,4 @@
-// The 2014 variant keeps the quirks ALGORITHM-2014.md documents; these pin them down against
+// The 2014 variant keeps the quirks of docs/algorithm-2014.md §4; these pin them down against
 // hand-worked cases, next to what modern does instead.
 #include "world_helpers.h"
 
@@ -9,8 +9,9 @@ namespace {
 
 constexpr double kDt = 1.0 / 60.0;
 
-// Section 2: "A = (0,0,100x40) against B = (5,10,10x20) yields (0,-30), although +15 on x would
-// separate them." In y-up metres (1 px = 1 m): A spans x [0,100], y [-40,0]; B is static.
+// docs/algorithm-2014.md §3.4, Quirk 1: a 100 x 40 box over a 10 x 20 static one near its left
+// edge is pushed 30 along y, though 15 along x would separate them. In y-up units (1 px = 1 m): A
+// spans x [0,100], y [-40,0]; B is static.
 TEST(Seed2014, PushDirectionComesFromEdgesNotCentres) {
   auto resolve = [](Variant v) {
     World w(world_def(v, VelocityRule::kZero, {0.0, 0.0}));
@@ -41,7 +42,7 @@ TEST(Seed2014, TouchingIsNotPushing) {
   }
 }
 
-// Section 5: every dynamic body takes its turn as `a`, so each dynamic pair is met twice; a
+// docs/algorithm-2014.md §2.5, Quirk 4 (example §3.6): every dynamic body takes its turn as `a`, so each dynamic pair is met twice; a
 // fresh overlap between two free boxes is split evenly either way.
 TEST(Seed2014, EqualMassesSplitAnOverlapEvenly) {
   World w(world_def(Variant::kSeed2014, VelocityRule::kZero, {0.0, 0.0}));
@@ -52,7 +53,7 @@ TEST(Seed2014, EqualMassesSplitAnOverlapEvenly) {
   EXPECT_FLOAT_EQ(w.position(b).x, 0.9);
 }
 
-// Bug 3: the grid is built once per step and never updated. A body pushed further than the
+// docs/algorithm-2014.md Quirk 3 (§3.7): the grid is built once per step and never updated. A body pushed further than the
 // grid's reach during the step is not met by the bodies near its new place until next step.
 TEST(Seed2014, StaleGridMissesPairsCreatedByALongPush) {
   auto overlap_after_one_step = [](Variant v) {

@@ -1,4 +1,4 @@
-// The worked examples of the 2014 design (ALGORITHM-2014.md, section 3), converted from
+// The worked examples of the 2014 design (docs/algorithm-2014.md §3; conversions §1), converted from
 // px/frame to metres and seconds, checked in both variants unless the example is modern-only.
 #include "world_helpers.h"
 
@@ -17,8 +17,8 @@ INSTANTIATE_TEST_SUITE_P(Solver, BothVariants,
                          ::testing::Values(Variant::kModern, Variant::kSeed2014),
                          [](const auto& info) { return variant_name(info.param); });
 
-// "A player moving at +4 pushes two touching boxes, all of mass 1: P ends at +4/3 and each box
-// at +4/3." With the zero rule the push repeats every step, so each body advances v*dt/3.
+// docs/algorithm-2014.md §3.1: a player at +4 pushing two touching boxes of equal mass moves the
+// three together, each by 4/3. With the zero rule the push repeats every step, so each body advances v*dt/3.
 TEST_P(BothVariants, DrivenPusherMovesTwoTouchingBoxesAThirdOfItsStepEach) {
   World w(world_def(GetParam(), VelocityRule::kZero, {0.0, 0.0}));
   const double v = 2.0;
@@ -36,7 +36,8 @@ TEST_P(BothVariants, DrivenPusherMovesTwoTouchingBoxesAThirdOfItsStepEach) {
   }
 }
 
-// "Against a wall, P is pushed back to where it started and the box does not move."
+// docs/algorithm-2014.md §3.2: against a wall, the player goes back to where it started and the
+// box stays.
 TEST_P(BothVariants, RowAgainstStaticWallDoesNotMove) {
   for (const VelocityRule rule : {VelocityRule::kZero, VelocityRule::kInelastic}) {
     World w(world_def(GetParam(), rule, {0.0, 0.0}));
@@ -59,7 +60,7 @@ TEST_P(BothVariants, RowAgainstStaticWallDoesNotMove) {
   }
 }
 
-// The chaining axis: a box resting on the floor and pushed sideways keeps its resting contact
+// docs/algorithm-2014.md §3.3, the chaining axis: a box resting on the floor and pushed sideways keeps its resting contact
 // out of the push. Were the floor contact chained sideways, the box would act as a wall and the
 // pusher would take the whole push (mass ignored); instead the push splits by mass every step.
 TEST_P(BothVariants, RestingContactIsNotResolvedSideways) {

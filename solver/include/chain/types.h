@@ -1,15 +1,23 @@
-// Plain data shared by the solver's API: vectors, body kinds, handles, per-step reports.
+// Plain data shared by the solver's API: vectors, body kinds, handles, views, per-step reports.
+// Units: metres, kilograms, seconds; y points up. Compiles as C++17 or later.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
+#include <utility>
+
+#if __cplusplus >= 202002L
+#include <span>
+#endif
 
 namespace chain {
 
 // Double precision throughout: a chain of n pushes accumulates n roundings, and a float at
 // 1 km already resolves only 6e-5 m.
 struct Vec2 {
-  double x = 0.0;
+  double x = 0.0;  // metres (or m/s, m/s^2, by context)
   double y = 0.0;
 };
 
@@ -21,24 +29,72 @@ enum class BodyType : std::uint8_t {
 
 // The push-out algorithm a world runs.
 enum class Variant : std::uint8_t {
-  kModern,    // collision chaining done right: order-independent, bounded, crush-aware
-  kSeed2014,  // the 2014 engine's algorithm, quirks included (see seed/ALGORITHM-2014.md)
+  kModern,    // collision chaining done right: order-independent, bounded, crush-aware, with
+              // continuous collision, seam-free immovable contacts and friction
+  kSeed2014,  // the 2014 engine's algorithm, quirks included (docs/algorithm-2014.md §4)
 };
 
-// What a push does to the velocities of the bodies it separates.
+// What a push does to the velocities of the bodies it separates. Friction (modern, BodyDef::
+// friction) acts after either rule, bounded by the normal momentum the rule took (world.h).
 enum class VelocityRule : std::uint8_t {
-  kZero,       // a velocity component pointing into the push is set to zero (the 2014 rule)
-  kInelastic,  // bodies pushed against each other share a mass-weighted normal velocity
+  // A velocity component pointing into the push is set to zero (the 2014 rule); a pushed body
+  // gains no velocity. Friction then slows or carries along the surface with the momentum that
+  // stop took: a body resting on a moving platform is carried, a sliding one stops.
+  kZero,
+  // Bodies pushed against each other share a mass-weighted normal velocity (perfectly inelastic),
+  // or bounce by restitution; friction acts with the momentum that change took.
+  kInelastic,
 };
 
 enum class Axis : std::uint8_t { kX = 0, kY = 1 };
+
+// The velocity components a drive holds (World::set_drive). An axis a drive does not hold is
+// left to gravity, contacts and friction.
+enum class DriveAxes : std::uint8_t {
+  kX = 1,     // hold the x velocity only: a character controller's horizontal speed
+  kY = 2,     // hold the y velocity only
+  kBoth = 3,  // hold the whole velocity
+};
 
 // A stable handle: never reused within a world, unaffected by how the world stores bodies.
 struct BodyId {
   static constexpr std::uint32_t kInvalid = std::numeric_limits<std::uint32_t>::max();
   std::uint32_t value = kInvalid;
 
-  friend constexpr bool operator==(BodyId, BodyId) = default;
+  friend constexpr bool operator==(BodyId a, BodyId b) { return a.value == b.value; }
+  friend constexpr bool operator!=(BodyId a, BodyId b) { return a.value != b.value; }
+};
+
+// A view of `size()` contiguous T: std::span's role for C++17 callers. Built from a pointer and a
+// count, or from any container with data() and size() (std::vector, std::array, std::span); in
+// C++20 it also converts to std::span. It never owns what it shows.
+template <class T>
+class Span {
+ public:
+  constexpr Span() noexcept = default;
+  constexpr Span(T* data, std::size_t size) noexcept : data_(data), size_(size) {}
+  template <class C, class = std::enable_if_t<
+                         !std::is_same_v<std::remove_cv_t<std::remove_reference_t<C>>, Span> &&
+                         std::is_convertible_v<decltype(std::declval<C&>().data()), T*>>>
+  constexpr Span(C&& c) noexcept : data_(c.data()), size_(c.size()) {}  // NOLINT: implicit
+
+  constexpr T* data() const noexcept { return data_; }
+  constexpr std::size_t size() const noexcept { return size_; }
+  constexpr bool empty() const noexcept { return size_ == 0; }
+  constexpr T* begin() const noexcept { return data_; }
+  constexpr T* end() const noexcept { return data_ + size_; }
+  // i < size(); not checked.
+  constexpr T& operator[](std::size_t i) const noexcept { return data_[i]; }
+
+#if __cplusplus >= 202002L
+  constexpr operator std::span<T>() const noexcept {
+    return {data_, size_};
+  }  // NOLINT
+#endif
+
+ private:
+  T* data_ = nullptr;
+  std::size_t size_ = 0;
 };
 
 // Sides on which a body was pushed during the last step (y up: bottom is the -y side).
@@ -68,6 +124,8 @@ struct StepStats {
   std::uint32_t crush_events = 0;   // bodies squeezed between two immovable bodies
   std::uint32_t renumbered = 0;     // 1 if the step left its bodies stored in the order it reached
                                     // them, for the next steps' memory access (modern)
+  std::uint32_t fast_bodies = 0;    // bodies that moved far for their size, swept (modern)
+  std::uint32_t swept = 0;          // bodies whose motion the sweep cut or slid (modern)
 };
 
 }  // namespace chain

@@ -1,16 +1,44 @@
 // A world of axis-aligned boxes resolved by collision chaining.
 //
-// Each step applies drives and gravity to velocities, integrates positions, pushes overlapping
-// boxes apart by chaining (a push that causes a new overlap is resolved in turn, with the pushing
-// mass accumulated down the chain), then updates velocities, touching flags and crush events.
-// The solver depends on the C++ standard library only.
+// Units: metres, kilograms, seconds; y points up. Each step of dt seconds:
+//   1. Drives set the velocity components they hold, gravity accelerates dynamic bodies, and every
+//      movable body moves by velocity * dt.
+//   2. Continuous collision (modern): a body that moved far for its size this step is swept along
+//      its path (see "Fast bodies" below).
+//   3. Overlapping boxes are pushed apart by chaining: a push that causes a new overlap is resolved
+//      in turn, with the pushing mass accumulated down the chain. A dynamic body is pushed out of
+//      a static or kinematic body through the face it came in through (modern): from where it
+//      was at the start of the step relative to that body, so the joins between flush tiles are
+//      neither snagged on nor pushed sideways from, and a body never comes out on the far side.
+//   4. Velocities: the velocity rule, then friction (modern); touching flags and crush events.
+//
+// Fast bodies (modern). A dynamic body is fast in a step when it moves more than half its half
+// extent along an axis; a kinematic body, more than its half extent.
+//   - Against static and kinematic bodies: no dynamic body passes through one, at any speed up to
+//     kMaxSpeed and any dt. A fast body's motion is swept; at each static or kinematic face it
+//     meets it stops moving into that face and slides on along it (up to 4 faces a step; after
+//     the 4th it stops for the rest of the step), as a slow body resting there would. What a fast
+//     kinematic body carries keeps its order along the motion: a stack on it stays a stack. The one
+//     exception is a squeeze, fast or slow: a body pressed between two immovable bodies (a
+//     platform lifting it into a ceiling) is reported as a crush event, and a kinematic body that
+//     keeps going then passes it.
+//   - Against dynamic bodies: a fast dynamic body is swept against the straight-line motion of
+//     every other dynamic body over the step. At the first meeting that would leave it past the
+//     other body, or inside it by more than a quarter of the smaller box, it is moved back along
+//     its path to that depth, and push-out then resolves the collision as between slow bodies
+//     (mass split, chains, velocity rule). So a fast body never passes through a body that moves
+//     as integrated, at any speed. Not guaranteed: if both bodies are fast and one is stopped
+//     earlier in the step by a third body, the other may miss it; bodies pushed by chains are not
+//     swept (a push moves a body at most by an overlap depth).
+//
+// The solver depends on the C++ standard library only; this header compiles as C++17 or later.
+// Any function that allocates may also throw std::bad_alloc.
 #pragma once
 
 #include <chain/types.h>
 
 #include <cstddef>
 #include <memory>
-#include <span>
 #include <string>
 
 namespace chain {
@@ -22,43 +50,68 @@ inline constexpr double kMaxHalfExtent = 1.0e8;  // metres
 inline constexpr double kMaxSpeed = 1.0e6;       // |velocity| components, m/s
 inline constexpr double kMaxMass = 1.0e18;       // kg
 inline constexpr double kMaxGravity = 1.0e6;     // |gravity| components, m/s^2
+inline constexpr double kMaxFriction = 1.0e6;    // friction coefficient, dimensionless
 
+// A body to add. World::create_body refuses (std::invalid_argument) a definition for which
+// validate() is not empty; the limits are given per field.
 struct BodyDef {
   BodyType type = BodyType::kDynamic;
-  Vec2 center;
-  Vec2 half_extents{0.5, 0.5};
-  Vec2 velocity;               // initial; a kinematic body keeps it
-  double mass = 1.0;           // dynamic bodies only; must be > 0
-  double gravity_scale = 1.0;  // dynamic bodies only
-  double restitution = 0.0;    // in [0, 1]; used by the inelastic velocity rule
+  Vec2 center;                  // m; components finite, |c| <= kMaxCoordinate
+  Vec2 half_extents{0.5, 0.5};  // m; each > 0 and <= kMaxHalfExtent
+  // m/s, initial; components finite, |v| <= kMaxSpeed; must be zero for a static body. A
+  // kinematic body keeps it until set_velocity or a drive changes it.
+  Vec2 velocity;
+  double mass = 1.0;           // kg; dynamic bodies only: > 0 and <= kMaxMass (else ignored)
+  double gravity_scale = 1.0;  // dynamic bodies only: finite, |s| <= 1e6 (else ignored)
+  double restitution = 0.0;    // in [0, 1]; the inelastic rule bounces by it (modern, seed2014)
+  // Coulomb friction coefficient, in [0, kMaxFriction], any body type. A contact's coefficient is
+  // sqrt(fa * fb), the geometric mean rigid-body engines commonly use, so a body with 0 never rubs. Modern variant
+  // only, both velocity rules (seed2014 ignores it); with 0 on every body nothing changes, to the
+  // bit. Push-out leaves no forces, so the normal impulse friction is bounded by is the momentum
+  // the step's push-out and velocity rule took out of the bodies a contact holds up, handed down
+  // through their supports (split evenly where a body rests on several): the bottom contact of a
+  // resting stack carries the whole stack's weight, M g dt a step, and a stack on a moving
+  // platform is carried as one. Friction never changes a component a drive holds, and moves a
+  // body by half the velocity it took, times dt, so a box sliding at v stops after v^2/(2 mu g).
+  double friction = 0.0;
 };
 
+// A world's settings. World's constructor refuses (std::invalid_argument) a definition for which
+// validate() is not empty; the limits are given per field.
 struct WorldDef {
   Variant variant = Variant::kModern;
   VelocityRule velocity_rule = VelocityRule::kInelastic;
-  Vec2 gravity{0.0, -10.0};
-  // Modern: contact sweeps per step; a sweep runs only while the previous one left overlaps.
+  Vec2 gravity{0.0, -10.0};  // m/s^2; components finite, |g| <= kMaxGravity
+  // Modern: contact sweeps per step, in [1, 1000]; a sweep runs only while the previous one left
+  // overlaps.
   int max_passes = 4;
-  // Both variants: pair resolutions allowed per step, per body (plus a fixed 1024). When a step
-  // runs out, the chains still open are cut, counted in StepStats::budget_hits.
+  // Both variants: pair resolutions allowed per step, per body (plus a fixed 1024), in
+  // [1, 1000000]. When a step runs out, the chains still open are cut, counted in
+  // StepStats::budget_hits.
   int budget_per_body = 64;
-  // seed2014 resolves recursively, as the 2014 engine did: deeper chains are cut and counted.
+  // seed2014 resolves recursively, as the 2014 engine did: deeper chains are cut and counted. In
+  // [1, 16384] (each level is a native stack frame).
   int seed_max_depth = 2048;
-  // Overlaps no deeper than this are contact, not penetration (metres). A row of n boxes can
-  // hold up to n times this, so it is kept near double rounding at kilometre scale.
+  // Overlaps no deeper than this are contact, not penetration (metres), in [0, 1]. A row of n
+  // boxes can hold up to n times this, so it is kept near double rounding at kilometre scale.
+  // Faces of immovable bodies closer than this count as flush (one surface).
   double touch_tolerance = 1.0e-9;
-  // Inelastic rule: closing speeds below this do not bounce (m/s).
+  // Inelastic rule: closing speeds below this do not bounce (m/s), in [0, 1e6].
   double restitution_threshold = 1.0;
 };
 
-// Empty when `def` can be added to a world; otherwise the reason, naming the field.
+// Empty when `def` can be added to a world; otherwise the reason, naming the field. No throw
+// but std::bad_alloc.
 std::string validate(const BodyDef& def);
-// Empty when a world can be built from `def`; otherwise the reason, naming the field.
+// Empty when a world can be built from `def`; otherwise the reason, naming the field. No throw
+// but std::bad_alloc.
 std::string validate(const WorldDef& def);
 
+// Every function taking a BodyId throws std::invalid_argument when no body with that id is in the
+// world (never created here, or destroyed).
 class World {
  public:
-  // Throws std::invalid_argument when validate(def) is not empty.
+  // Throws std::invalid_argument (with validate()'s reason) when validate(def) is not empty.
   explicit World(const WorldDef& def = WorldDef{});
   ~World();
   World(const World& other);
@@ -66,36 +119,53 @@ class World {
   World(World&& other) noexcept;
   World& operator=(World&& other) noexcept;
 
-  // Adds a body; throws std::invalid_argument (with validate()'s reason) for a bad definition.
+  // Adds a body and returns its id. Throws std::invalid_argument (with validate()'s reason) for a
+  // bad definition, std::length_error once 2^32 - 1 bodies were created.
   BodyId create_body(const BodyDef& def);
-  // Removes a body; its id is never handed out again.
+  // Removes a body; its id is never handed out again. Throws std::invalid_argument (unknown id).
   void destroy_body(BodyId id);
-  bool contains(BodyId id) const;
-  std::size_t body_count() const;
+  bool contains(BodyId id) const noexcept;
+  std::size_t body_count() const noexcept;
 
-  // A drive sets the body's velocity at the start of every step until cleared, as a character
-  // controller would; gravity still acts within the step. Dynamic and kinematic bodies only.
-  void set_drive(BodyId id, Vec2 velocity);
+  // A drive sets the velocity components it holds (m/s) at the start of every step until cleared,
+  // as a character controller would; gravity still acts within the step, and contacts may change
+  // the velocity after it. An axis it does not hold is left free: set_drive(id, {4, 0},
+  // DriveAxes::kX) walks at 4 m/s and falls off a ledge. Friction never changes a held component.
+  // Both variants (seed2014 applies it the same way, in its integration). Dynamic and kinematic
+  // bodies only. Throws std::invalid_argument for an unknown id, a static body, a held component
+  // that is not finite or beyond kMaxSpeed, or `axes` not a DriveAxes value. Replaces any drive
+  // the body had; the two-argument form holds both axes.
+  void set_drive(BodyId id, Vec2 velocity, DriveAxes axes);
+  void set_drive(BodyId id, Vec2 velocity) { set_drive(id, velocity, DriveAxes::kBoth); }
+  // Ends the body's drive, if any; it keeps the velocity it has. Throws std::invalid_argument
+  // (unknown id).
   void clear_drive(BodyId id);
+  // Sets the body's velocity now (m/s). Throws std::invalid_argument for an unknown id, a static
+  // body, or a component that is not finite or beyond kMaxSpeed.
   void set_velocity(BodyId id, Vec2 velocity);
 
+  // Centre (m) and velocity (m/s) after the last step. Throw std::invalid_argument (unknown id).
   Vec2 position(BodyId id) const;
   Vec2 velocity(BodyId id) const;
-  // touching:: bits for the sides on which the body was pushed during the last step.
+  // touching:: bits for the sides on which the body was pushed during the last step. Throws
+  // std::invalid_argument (unknown id).
   std::uint8_t touching_flags(BodyId id) const;
-  // Positions and velocities of `ids`, in that order; either output may be empty to skip it.
-  void read_state(std::span<const BodyId> ids, std::span<Vec2> positions,
-                  std::span<Vec2> velocities) const;
+  // Positions (m) and velocities (m/s) of `ids`, in that order; either output may be empty to
+  // skip it. Throws std::invalid_argument for a non-empty output shorter than ids (before
+  // writing anything) or an unknown id (after writing the entries before it).
+  void read_state(Span<const BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities) const;
 
-  // Advances by dt seconds (finite, > 0; throws std::invalid_argument otherwise).
+  // Advances by dt seconds. Throws std::invalid_argument unless dt is finite and > 0; any dt is
+  // valid, and fast bodies are swept whatever it is (modern).
   // Deterministic: the same bodies, in any creation order, give the same bits (modern variant;
   // two identical bodies in the same place may trade places, as nothing tells them apart).
+  // Allocates nothing once the world's buffers have grown to their working size.
   void step(double dt);
 
-  const StepStats& last_step_stats() const;
-  // Crush events of the last step, in a deterministic order.
-  std::span<const CrushEvent> crush_events() const;
-  const WorldDef& def() const;
+  const StepStats& last_step_stats() const noexcept;
+  // Crush events of the last step, in a deterministic order; valid until the next step.
+  Span<const CrushEvent> crush_events() const noexcept;
+  const WorldDef& def() const noexcept;
 
  private:
   struct Impl;

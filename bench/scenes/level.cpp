@@ -1,0 +1,220 @@
+// Level scenes: what a platformer's levels ask of a resolver. Tile floors with seams, fast falling
+// crates, a character walking off a ledge, a crate riding a moving platform and one sliding on a
+// rough floor. Metres, gravity (0, -10), dt 1/60 unless set; each states its analytic answer.
+#include "scene_library.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace chainbench {
+namespace {
+
+using build::box;
+
+// Static tiles side by side on [x0, x1], cut at `cuts`, their top face at `top`, `thick` deep.
+void tiles(Scene& s, const std::vector<double>& edges, double top, double thick) {
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    const double half = 0.5 * (edges[i + 1] - edges[i]);
+    box(s, build::label("tile", static_cast<int>(i)), BodyKind::kStatic,
+        {edges[i] + half, top - 0.5 * thick}, {half, 0.5 * thick});
+  }
+}
+
+// A 0.5 m box (5 kg) sliding at `speed` over the join of two flush floor tiles, starting
+// `phase` m past the join on the near side. Mirrored by `direction` = -1 (leftwards, the case a
+// contact order decides) or +1. Frictionless: nothing slows it, so after n steps it is
+// speed n dt further on, resting at y = 0.25.
+Scene seam_slide(const SceneParams& p) {
+  Scene s;
+  s.name = "seam_slide";
+  const double dir = p.get("direction") < 0 ? -1.0 : 1.0;
+  // Leftwards: tiles [-4, 0] and [0, 2]; rightwards, their mirror image.
+  tiles(s, dir < 0 ? std::vector<double>{-4.0, 0.0, 2.0} : std::vector<double>{-2.0, 0.0, 4.0}, 0.0,
+        1.0);
+  const double x0 = -dir * p.get("phase");
+  const std::size_t b = box(s, "box", BodyKind::kDynamic, {x0, 0.25}, {0.25, 0.25}, 5.0);
+  s.bodies[b].velocity = {dir * p.get("speed"), 0.0};
+  const double travel = p.get("speed") * p.get("dt") * p.count("steps");
+  const double tolerance = build::kVisible * 0.5;
+  // Past the far tile's end it would fall: the answer holds while it stays on the tiles.
+  const double end = dir < 0 ? -4.0 + 0.25 : 4.0 - 0.25;
+  const double x = dir < 0 ? std::max(x0 + dir * travel, end) : std::min(x0 + dir * travel, end);
+  if (x == x0 + dir * travel) s.expect.push_back(build::expect_center(b, {x, 0.25}, tolerance));
+  // Never snagged: it neither sinks into the floor nor rises off it on the way.
+  Expectation level =
+      build::expect_bounds(b, std::nullopt, 0.25 - tolerance, std::nullopt, 0.25 + tolerance);
+  level.from_step = 0;
+  s.expect.push_back(level);
+  return s;
+}
+
+// A 0.5 m crate dropped (or thrown down at `speed`) at x onto two 0.1 m tiles, [-1, 0] and
+// [0, 1] with their top at y = 0.05: it lands where it fell, at (x, 0.3), never pushed sideways.
+Scene seam_landing(const SceneParams& p) {
+  Scene s;
+  s.name = "seam_landing";
+  tiles(s, {-1.0, 0.0, 1.0}, 0.05, 0.1);
+  const double x = p.get("x");
+  const std::size_t c = box(s, "crate", BodyKind::kDynamic, {x, 1.35}, {0.25, 0.25}, 1.0);
+  s.bodies[c].velocity = {0.0, -p.get("speed")};
+  const double tolerance = build::kVisible * 0.5;
+  const double fall = 1.05;  // from y = 1.35 to 0.3
+  const double v = p.get("speed"), g = 10.0;
+  const double t_land = (-v + std::sqrt(v * v + 2.0 * g * fall)) / g;
+  if (t_land + 2.0 * p.get("dt") <= p.get("dt") * p.count("steps"))
+    s.expect.push_back(build::expect_center(c, {x, 0.3}, tolerance));
+  Expectation straight =
+      build::expect_bounds(c, x - tolerance, 0.3 - tolerance, x + tolerance, std::nullopt);
+  straight.from_step = 0;
+  s.expect.push_back(straight);
+  return s;
+}
+
+// A 0.5 m crate falling at `speed` onto a 0.1 m static slab from 3 m above it: it stops on the
+// slab at (0, 0.3), whatever the speed, and is never below it.
+Scene fast_drop(const SceneParams& p) {
+  Scene s;
+  s.name = "fast_drop";
+  box(s, "slab", BodyKind::kStatic, {0.0, 0.0}, {2.0, 0.05});
+  const std::size_t c = box(s, "crate", BodyKind::kDynamic, {0.0, 3.3}, {0.25, 0.25}, 1.0);
+  s.bodies[c].velocity = {0.0, -p.get("speed")};
+  const double tolerance = build::kVisible * 0.5;
+  s.expect.push_back(build::expect_center(c, {0.0, 0.3}, tolerance));
+  Expectation above =
+      build::expect_bounds(c, std::nullopt, 0.3 - tolerance, std::nullopt, std::nullopt);
+  above.from_step = 0;
+  s.expect.push_back(above);
+  return s;
+}
+
+// A character (0.5 m wide, 1 m tall) walking at `speed` towards the edge of a floor ending at
+// x = 0, its horizontal speed held by a driver and its vertical left to gravity: past the edge it
+// falls as a thrown body does. Engines differ by one step in when support ends (contacts read
+// before or after the move) and integrate velocity and position in either order, so the height
+// is bounded by falls of m - 1 and m + 1 steps, m counted from the first state off the edge.
+Scene ledge_walk(const SceneParams& p) {
+  Scene s;
+  s.name = "ledge_walk";
+  box(s, "floor", BodyKind::kStatic, {-5.0, -0.5}, {5.0, 0.5});
+  const std::size_t c = box(s, "character", BodyKind::kDynamic, {-1.0, 0.5}, {0.25, 0.5}, 1.0);
+  Driver walk;
+  walk.body = c;
+  walk.velocity = {p.get("speed"), 0.0};
+  walk.hold_y = false;
+  s.drivers.push_back(walk);
+  const double dt = p.get("dt"), v = p.get("speed");
+  const int n = p.count("steps");
+  const double x = -1.0 + v * dt * n;
+  // The first state whose left edge is past the floor's end.
+  const int off = v > 0 ? static_cast<int>(std::floor(1.25 / (v * dt))) + 1 : n + 1;
+  const int m = std::max(0, n - off);
+  const double g = 10.0;
+  auto fallen = [&](int k) { return k <= 0 ? 0.0 : g * dt * dt * k * (k + 1) / 2.0; };
+  const double low = 0.5 - fallen(m + 1), high = 0.5 - (m > 0 ? fallen(m - 2) : 0.0);
+  s.expect.push_back(build::expect_bounds(c, x - 1e-6, low - 1e-6, x + 1e-6, high + 1e-6));
+  return s;
+}
+
+// A crate on a kinematic platform that starts moving at `speed`: kinetic friction accelerates it
+// at mu g until it moves with the platform, so it slips v^2 / (2 mu g) (0.2 m at 2 m/s, mu = 1)
+// and rides on. Frictionless, it stays where it was while the platform slides under it.
+Scene platform_ride(const SceneParams& p) {
+  Scene s;
+  s.name = "platform_ride";
+  const std::size_t platform = box(s, "platform", BodyKind::kKinematic, {0.0, -0.25}, {3.0, 0.25});
+  const double v = p.get("speed"), mu = p.get("mu"), g = 10.0;
+  s.bodies[platform].velocity = {v, 0.0};
+  s.bodies[platform].friction = mu;
+  const std::size_t c = box(s, "crate", BodyKind::kDynamic, {0.0, 0.25}, {0.25, 0.25}, 1.0);
+  s.bodies[c].friction = mu;
+  // Until it catches up, at t = v / (mu g), it moves mu g t^2 / 2; after, with the platform.
+  const double t = p.get("dt") * p.count("steps");
+  const double catch_up = mu > 0 ? v / (mu * g) : t;
+  const double moved = t >= catch_up ? v * t - v * v / (2.0 * mu * g) : 0.5 * mu * g * t * t;
+  // While it is still on the platform (its left end is at -3 + v t): within 2 cm, the slip's
+  // discretisation by one step at most (v dt / 2 = 1.7 cm at 2 m/s).
+  if (moved >= -3.0 + v * t + 0.25) s.expect.push_back(build::expect_moved(c, {moved, 0.0}, 0.02));
+  return s;
+}
+
+// A crate sliding at `speed` on a floor with friction `mu`: it stops after v^2 / (2 mu g)
+// (0.4 m from 2 m/s at mu = 0.5). Semi-implicit integration lands short by up to v dt / 2
+// (1.7 cm), hence the 2 cm tolerance.
+Scene rough_slide(const SceneParams& p) {
+  Scene s;
+  s.name = "rough_slide";
+  const std::size_t floor = box(s, "floor", BodyKind::kStatic, {0.0, -0.5}, {10.0, 0.5});
+  const double v = p.get("speed"), mu = p.get("mu"), g = 10.0;
+  s.bodies[floor].friction = mu;
+  const std::size_t c = box(s, "crate", BodyKind::kDynamic, {-5.0, 0.25}, {0.25, 0.25}, 1.0);
+  s.bodies[c].friction = mu;
+  s.bodies[c].velocity = {v, 0.0};
+  const double t = p.get("dt") * p.count("steps");
+  const double stop = mu > 0 ? v / (mu * g) : t;
+  const double d = t >= stop ? v * v / (2.0 * mu * g) : v * t - 0.5 * mu * g * t * t;
+  if (-5.0 + d <= 10.0 - 0.25) s.expect.push_back(build::expect_moved(c, {d, 0.0}, 0.02));
+  return s;
+}
+
+std::size_t three(const SceneParams&) {
+  return 3;
+}
+std::size_t two(const SceneParams&) {
+  return 2;
+}
+
+}  // namespace
+
+std::vector<SceneRecipe> level_scenes() {
+  return {
+      {"seam_slide",
+       "level",
+       "a box sliding over the join of two flush floor tiles: it must not snag",
+       {{"direction", -1, -1, 1, true, "-1 leftwards, 1 rightwards"},
+        {"speed", 5, 0, 1000, false, "m/s"},
+        {"phase", 0.33233, 0, 2, false, "start past the join, m"}},
+       seam_slide,
+       three,
+       30},
+      {"seam_landing",
+       "level",
+       "a crate dropped next to the join of two tiles: it lands where it fell",
+       {{"x", 0.2, -0.75, 0.75, false, "where it falls, m"},
+        {"speed", 0, 0, 1000, false, "thrown down at, m/s"}},
+       seam_landing,
+       three,
+       60},
+      {"fast_drop",
+       "level",
+       "a crate falling fast onto a thin slab: it stops on it",
+       {{"speed", 25, 0, 10000, false, "m/s"}},
+       fast_drop,
+       two,
+       60},
+      {"ledge_walk",
+       "level",
+       "a character walking off a ledge, its horizontal speed held: it falls",
+       {{"speed", 4, 0, 100, false, "walking speed, m/s"}},
+       ledge_walk,
+       two,
+       60},
+      {"platform_ride",
+       "level",
+       "a crate on a platform that starts moving sideways: friction carries it",
+       {{"speed", 2, 0, 100, false, "platform speed, m/s"},
+        {"mu", 1, 0, 10, false, "friction of crate and platform"}},
+       platform_ride,
+       two,
+       60},
+      {"rough_slide",
+       "level",
+       "a crate sliding on a rough floor: friction stops it",
+       {{"speed", 2, 0, 100, false, "m/s"},
+        {"mu", 0.5, 0, 10, false, "friction of crate and floor"}},
+       rough_slide,
+       two,
+       60},
+  };
+}
+
+}  // namespace chainbench

@@ -1,0 +1,94 @@
+#include "entry_face.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace chain::detail {
+namespace {
+
+constexpr double kInside = -std::numeric_limits<double>::infinity();
+// Flush neighbours a face is checked against: a join is made of a few tiles, and a face with more
+// counts as uncovered beyond them (a real edge is the safe answer).
+constexpr int kMaxCovers = 8;
+
+}  // namespace
+
+bool face_covered(const StepContext& ctx, std::uint32_t b, int axis, int side, double lo,
+                  double hi) {
+  const Bodies& bodies = ctx.bodies;
+  const double tol = ctx.def.touch_tolerance;
+  const int u = 1 - axis;
+  hi = std::max(hi, lo);
+  const double face = bodies.pos(axis, b) + side * bodies.half(axis, b);
+  // The face's plane, over [lo, hi]: flush neighbours touch it.
+  double centre[2], half[2];
+  centre[axis] = face;
+  half[axis] = 0.0;
+  centre[u] = 0.5 * (lo + hi);
+  half[u] = 0.5 * (hi - lo);
+  double from[kMaxCovers], to[kMaxCovers];
+  int count = 0;
+  ctx.broadphase.for_each_in_box(
+      bodies, centre[0], centre[1], half[0], half[1], tol, [&](std::uint32_t j) {
+        if (j == b || !bodies.immovable(j) || count == kMaxCovers) return;
+        const double near = bodies.pos(axis, j) - side * bodies.half(axis, j);
+        if (std::abs(near - face) > tol) return;
+        from[count] = bodies.pos(u, j) - bodies.half(u, j);
+        to[count] = bodies.pos(u, j) + bodies.half(u, j);
+        ++count;
+      });
+  // Does the union of the neighbours' spans reach from lo to hi?
+  double reached = lo;
+  for (bool grew = true; grew && reached < hi - tol;) {
+    grew = false;
+    for (int k = 0; k < count; ++k) {
+      if (from[k] <= reached + tol && to[k] > reached) {
+        reached = to[k];
+        grew = true;
+      }
+    }
+  }
+  return reached >= hi - tol;
+}
+
+Face entry_face(const StepContext& ctx, std::uint32_t a, std::uint32_t b) {
+  const Bodies& bodies = ctx.bodies;
+  const double tol = ctx.def.touch_tolerance;
+  double entry[2];
+  int side[2];
+  bool outside[2];
+  for (int k = 0; k < 2; ++k) {
+    const double r0 = bodies.start_pos(k, a) - bodies.start_pos(k, b);
+    const double r1 = bodies.pos(k, a) - bodies.pos(k, b);
+    const double gap = std::abs(r0) - (bodies.half(k, a) + bodies.half(k, b));
+    side[k] = r0 >= 0.0 ? 1 : -1;
+    outside[k] = gap >= -tol;
+    const double closed = side[k] * (r0 - r1);
+    entry[k] = !outside[k] ? kInside : (closed > 0.0 ? std::max(gap, 0.0) / closed : 0.0);
+  }
+  const Overlap o = overlap(bodies, a, b);
+  if (!outside[0] && !outside[1]) {
+    const int axis = overlap_axis(o);
+    return {axis, bodies.pos(axis, a) >= bodies.pos(axis, b) ? 1 : -1, kInside};
+  }
+  if (outside[0] != outside[1]) {
+    const int axis = outside[0] ? 0 : 1;
+    return {axis, side[axis], entry[axis]};
+  }
+  // Over a corner: the later crossing, unless flush neighbours cover that face where a meets it.
+  const int last = entry[0] != entry[1] ? (entry[0] > entry[1] ? 0 : 1) : overlap_axis(o);
+  const int other = 1 - last;
+  auto covered = [&](int axis) {
+    const int u = 1 - axis;
+    const double lo =
+        std::max(bodies.pos(u, a) - bodies.half(u, a), bodies.pos(u, b) - bodies.half(u, b));
+    const double hi =
+        std::min(bodies.pos(u, a) + bodies.half(u, a), bodies.pos(u, b) + bodies.half(u, b));
+    return face_covered(ctx, b, axis, side[axis], lo, hi);
+  };
+  const int axis = covered(last) && !covered(other) ? other : last;
+  return {axis, side[axis], entry[axis]};
+}
+
+}  // namespace chain::detail

@@ -1,0 +1,187 @@
+#include "friction.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace chain::detail {
+namespace {
+
+constexpr std::uint32_t kUnreached = 0xffffffffu;
+
+}  // namespace
+
+void Friction::number_bodies(const Bodies& bodies, const std::vector<Link>& links) {
+  if (local_.size() != bodies.size()) {
+    local_.assign(bodies.size(), 0);
+    local_mark_.assign(bodies.size(), 0);
+    mark_ = 0;
+  }
+  if (++mark_ == 0) {
+    std::fill(local_mark_.begin(), local_mark_.end(), 0u);
+    mark_ = 1;
+  }
+  bodies_.clear();
+  auto number = [&](std::uint32_t slot) {
+    if (bodies.immovable(slot) || local_mark_[slot] == mark_) return;
+    local_mark_[slot] = mark_;
+    local_[slot] = static_cast<std::uint32_t>(bodies_.size());
+    bodies_.push_back(slot);
+  };
+  for (const Link& l : links) {
+    number(l.a);
+    number(l.b);
+  }
+}
+
+void Friction::normal_impulses(const Bodies& bodies, const std::vector<Link>& links,
+                               const std::vector<Point>& pre_velocity, int axis) {
+  const auto m = static_cast<std::uint32_t>(bodies_.size());
+  const auto n_links = static_cast<std::uint32_t>(links.size());
+  // Adjacency: per local body, the links along axis it takes part in.
+  adj_start_.assign(m + 2, 0);
+  for (const Link& l : links) {
+    if (l.axis != axis) continue;
+    ++adj_start_[local(l.a) + 2];
+    if (!bodies.immovable(l.b)) ++adj_start_[local(l.b) + 2];
+  }
+  for (std::uint32_t i = 2; i < m + 2; ++i)
+    adj_start_[i] += adj_start_[i - 1];
+  adj_.resize(adj_start_[m + 1]);
+  for (std::uint32_t k = 0; k < n_links; ++k) {  // adj_start_[i + 1] is the fill cursor of i
+    const Link& l = links[k];
+    if (l.axis != axis) continue;
+    adj_[adj_start_[local(l.a) + 1]++] = k;
+    if (!bodies.immovable(l.b)) adj_[adj_start_[local(l.b) + 1]++] = k;
+  }
+  // Levels by contact-graph distance from the immovable bodies (level 0); a group that touches
+  // none grows from its first body in step order.
+  level_.assign(m, kUnreached);
+  queue_.clear();
+  auto other = [&](const Link& l, std::uint32_t u) { return bodies_[u] == l.a ? l.b : l.a; };
+  auto grow = [&](std::size_t from) {
+    for (std::size_t q = from; q < queue_.size(); ++q) {
+      const std::uint32_t u = queue_[q];
+      for (std::uint32_t e = adj_start_[u]; e < adj_start_[u + 1]; ++e) {
+        const std::uint32_t o = other(links[adj_[e]], u);
+        if (bodies.immovable(o) || level_[local(o)] != kUnreached) continue;
+        level_[local(o)] = level_[u] + 1;
+        queue_.push_back(local(o));
+      }
+    }
+  };
+  for (const Link& l : links) {
+    if (l.axis != axis || !bodies.immovable(l.b) || level_[local(l.a)] != kUnreached) continue;
+    level_[local(l.a)] = 1;
+    queue_.push_back(local(l.a));
+  }
+  grow(0);
+  for (const Link& l : links) {
+    if (l.axis != axis) continue;
+    for (const std::uint32_t slot : {l.a, l.b}) {
+      if (bodies.immovable(slot) || level_[local(slot)] != kUnreached) continue;
+      const std::size_t from = queue_.size();
+      level_[local(slot)] = 1;
+      queue_.push_back(local(slot));
+      grow(from);
+    }
+  }
+  // Each body's momentum change, plus what it passed on to the bodies it holds up, goes down to
+  // its supports (the neighbours of a lower level), farthest bodies first.
+  carried_.resize(m);
+  for (const std::uint32_t u : queue_) {
+    const std::uint32_t slot = bodies_[u];
+    const double v = axis == 0 ? bodies.vx[slot] : bodies.vy[slot];
+    const double v0 = axis == 0 ? pre_velocity[slot].x : pre_velocity[slot].y;
+    carried_[u] = bodies.mass[slot] * (v - v0);
+  }
+  auto supports = [&](const Link& l, std::uint32_t u) {
+    const std::uint32_t o = other(l, u);
+    return bodies.immovable(o) || level_[local(o)] < level_[u];
+  };
+  for (std::size_t q = queue_.size(); q-- > 0;) {
+    const std::uint32_t u = queue_[q];
+    std::uint32_t count = 0;
+    for (std::uint32_t e = adj_start_[u]; e < adj_start_[u + 1]; ++e)
+      count += supports(links[adj_[e]], u) ? 1u : 0u;
+    if (count == 0) continue;
+    const double share = carried_[u] / static_cast<double>(count);
+    for (std::uint32_t e = adj_start_[u]; e < adj_start_[u + 1]; ++e) {
+      const Link& l = links[adj_[e]];
+      if (!supports(l, u)) continue;
+      // The support pushes u along l.sign when u is the pushed body a, against it otherwise.
+      normal_[adj_[e]] += (bodies_[u] == l.a ? 1.0 : -1.0) * l.sign * share;
+      const std::uint32_t o = other(l, u);
+      if (!bodies.immovable(o)) carried_[local(o)] += share;
+    }
+  }
+}
+
+void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<Link>& links,
+                     const std::vector<Point>& pre_velocity, double dt) {
+  if (links.empty()) return;
+  const std::size_t n_links = links.size();
+  if (limit_.capacity() < links.capacity()) {
+    // As many as the link list can hold, so that a busier step does not allocate.
+    for (auto* v : {&normal_, &limit_, &applied_})
+      v->reserve(links.capacity());
+    for (auto* v : {&active_, &adj_})
+      v->reserve(2 * links.capacity());
+    for (auto* v : {&bodies_, &level_, &adj_start_, &queue_})
+      v->reserve(bodies.size() + 2);
+    carried_.reserve(bodies.size());
+    v_before_.reserve(bodies.size());
+  }
+  limit_.assign(n_links, 0.0);
+  active_.clear();
+  bool any = false;
+  for (std::size_t k = 0; k < n_links; ++k) {
+    limit_[k] = std::sqrt(bodies.friction[links[k].a] * bodies.friction[links[k].b]);
+    any = any || limit_[k] > 0.0;
+  }
+  if (!any) return;
+  number_bodies(bodies, links);
+  // Both axes' normal impulses come from the velocities the velocity rule left, before any
+  // friction changes them.
+  normal_.assign(n_links, 0.0);
+  normal_impulses(bodies, links, pre_velocity, 0);
+  normal_impulses(bodies, links, pre_velocity, 1);
+  for (std::size_t k = 0; k < n_links; ++k) {
+    limit_[k] *= std::max(0.0, normal_[k]);
+    if (limit_[k] > 0.0) active_.push_back(static_cast<std::uint32_t>(k));
+  }
+  if (active_.empty()) return;
+
+  v_before_.resize(bodies_.size());
+  for (std::size_t u = 0; u < bodies_.size(); ++u)
+    v_before_[u] = {bodies.vx[bodies_[u]], bodies.vy[bodies_[u]]};
+  applied_.assign(n_links, 0.0);
+  auto inverse_mass = [&](std::uint32_t slot, int t) {
+    if (bodies.immovable(slot) || (bodies.driven[slot] & (t == 0 ? kDriveX : kDriveY))) return 0.0;
+    return 1.0 / bodies.mass[slot];
+  };
+  for (int iteration = 0; iteration < kIterations; ++iteration) {
+    for (const std::uint32_t k : active_) {
+      const Link& l = links[k];
+      const int t = 1 - l.axis;
+      double* v = t == 0 ? bodies.vx.data() : bodies.vy.data();
+      const double inv_a = inverse_mass(l.a, t), inv_b = inverse_mass(l.b, t);
+      if (inv_a + inv_b == 0.0) continue;
+      const double wanted = -(v[l.a] - v[l.b]) / (inv_a + inv_b);
+      const double total = std::clamp(applied_[k] + wanted, -limit_[k], limit_[k]);
+      const double impulse = total - applied_[k];
+      applied_[k] = total;
+      v[l.a] += impulse * inv_a;
+      v[l.b] -= impulse * inv_b;
+    }
+  }
+  for (std::size_t u = 0; u < bodies_.size(); ++u) {
+    const std::uint32_t slot = bodies_[u];
+    const double dvx = bodies.vx[slot] - v_before_[u].x, dvy = bodies.vy[slot] - v_before_[u].y;
+    if (dvx == 0.0 && dvy == 0.0) continue;
+    bodies.pos(0, slot) += 0.5 * dvx * dt;
+    bodies.pos(1, slot) += 0.5 * dvy * dt;
+    broadphase.note_move(slot, bodies.x(slot), bodies.y(slot));
+  }
+}
+
+}  // namespace chain::detail

@@ -1,0 +1,50 @@
+// Integration: drives, gravity and positions for one step, and what the rest of the step needs
+// to know about it: where every movable body started (Bodies::start), which bodies moved far for
+// their size (the sweep takes those), and the velocities before push-out (friction weighs contacts
+// by the momentum push-out took).
+#pragma once
+
+#include "bodies.h"
+#include "broadphase.h"
+
+#include <chain/types.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace chain::detail {
+
+// A dynamic body is fast when a step moves it more than this share of its half extent along an
+// axis: two slow dynamic bodies then close by less than half their summed half extents, so their
+// centres never cross and least-overlap push-out separates them the right way. A kinematic body
+// is fast past its whole half extent: a slow kinematic body and a slow dynamic one close by less
+// than their summed half extents, so neither passes through the other, and the face rule
+// (entry_face.h) resolves any overlap short of that.
+inline constexpr double kFastDynamicShare = 0.5;
+inline constexpr double kFastKinematicShare = 1.0;
+
+struct Motion {
+  // Movable slots that moved fast this step, ascending (filled when sweeping is on).
+  std::span<const std::uint32_t> fast() const { return {fast_.data(), fast_count_}; }
+  // Per dynamic slot, the velocity after drives and gravity (filled when keeping velocities).
+  std::vector<Point> pre_velocity;
+
+  // Applies drives and gravity to velocities, moves every movable body by velocity * dt, records
+  // start positions (and, as asked, the fast bodies and the velocities), and notes every move.
+  void integrate(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt, bool find_fast,
+                 bool keep_velocities);
+
+ private:
+  template <bool kDynamic, bool kFindFast, bool kKeepVelocities>
+  void integrate_range(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt,
+                       std::uint32_t begin, std::uint32_t end);
+  template <bool kFindFast, bool kKeepVelocities>
+  void integrate_all(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt);
+
+  std::vector<std::uint32_t> fast_;  // room for every movable slot; the first fast_count_ count
+  std::size_t fast_count_ = 0;
+};
+
+}  // namespace chain::detail

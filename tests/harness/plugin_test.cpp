@@ -1,0 +1,152 @@
+// Plugins: a user's resolver in a shared library (chainbench/engine_plugin.h). A ballistic test
+// plugin written in C shows that the scene, the drivers and the counters cross the C ABI intact
+// (its free fall matches the analytic answer), and one build of it per fault shows that every way
+// a plugin can go wrong stops the run with a message naming the plugin and the reason.
+#include "input_error.h"
+#include "registry.h"
+#include "runner.h"
+#include "stress.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace chainbench {
+namespace {
+
+std::string plugin_spec(const std::string& fault) {
+  return "plugin:path=" CHAINBENCH_TEST_PLUGINS "/libtest_plugin_" + fault + ".so";
+}
+
+// A ball in free flight, a cart whose x velocity a driver holds at 3 m/s while it falls, and a
+// kinematic lift: no two ever touch, so the ballistic plugin's answer is the analytic one.
+Scene flight() {
+  Scene s;
+  s.name = "flight";
+  s.steps = 30;
+  s.bodies.push_back({"ball", BodyKind::kDynamic, {0, 10}, {0.5, 0.5}, {1, 2}, 2.0, 1.0, {}, {}});
+  s.bodies.push_back({"cart", BodyKind::kDynamic, {10, 10}, {0.5, 0.5}, {0, 0}, 1.0, 0.5, {}, {}});
+  s.bodies.push_back({"lift", BodyKind::kKinematic, {20, 0}, {1, 0.25}, {0, 1}, 0.0, 1.0, {}, {}});
+  Driver d;
+  d.body = 1;
+  d.velocity = {3, 0};
+  d.hold_y = false;
+  s.drivers.push_back(d);
+  return s;
+}
+
+// Semi-implicit Euler from rest-free initial conditions: after n steps the position is
+// x0 + n dt v0 + g dt^2 n (n + 1) / 2.
+double fallen(double x0, double v0, double g, double dt, int n) {
+  return x0 + n * dt * v0 + g * dt * dt * n * (n + 1) / 2.0;
+}
+
+TEST(Plugin, BallisticPluginFollowsTheAnalyticFlight) {
+  const Scene s = flight();
+  const EngineRun run = run_engine(s, parse_engine_spec(plugin_spec("none")), RunOptions{});
+  const int n = s.steps;
+  ASSERT_EQ(run.final_positions.size(), 3u);
+  EXPECT_NEAR(run.final_positions[0].x, 0.0 + n * s.dt * 1.0, 1e-9);
+  EXPECT_NEAR(run.final_positions[0].y, fallen(10, 2, -10, s.dt, n), 1e-9);
+  EXPECT_NEAR(run.final_positions[1].x, 10.0 + n * s.dt * 3.0, 1e-9);       // x held by its driver
+  EXPECT_NEAR(run.final_positions[1].y, fallen(10, 0, -5, s.dt, n), 1e-9);  // gravity scale 0.5
+  EXPECT_NEAR(run.final_positions[2].y, 0.0 + n * s.dt * 1.0, 1e-9);
+  // Its one counter is the steps it has taken; the run reports its mean over steps, (n + 1) / 2.
+  ASSERT_EQ(run.counters.size(), 1u);
+  EXPECT_EQ(run.counter_defs()[0].name, "steps_so_far");
+  EXPECT_DOUBLE_EQ(run.counters[0], (n + 1) / 2.0);
+}
+
+TEST(Plugin, SettingsReachThePlugin) {
+  try {
+    run_engine(flight(), parse_engine_spec(plugin_spec("none") + ",colour=red"), RunOptions{});
+    FAIL() << "the plugin accepted a setting it does not know";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown setting \"colour\""), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Plugin, ASceneNeedingWhatThePluginLacksIsRefusedByName) {
+  Scene s = flight();
+  s.bodies[0].friction = 0.5;
+  const std::string why = missing_capability(parse_engine_spec(plugin_spec("none")), s);
+  EXPECT_NE(why.find("has no friction, and bodies[0] (ball) has friction 0.5"), std::string::npos)
+      << why;
+  EXPECT_THROW(make_engine(parse_engine_spec(plugin_spec("none")), s), InputError);
+}
+
+struct Fault {
+  std::string name;
+  std::string message;  // what the error must say
+};
+
+class PluginFault : public ::testing::TestWithParam<Fault> {};
+
+TEST_P(PluginFault, StopsTheRunWithAMessageNamingThePlugin) {
+  const Fault& f = GetParam();
+  try {
+    run_engine(flight(), parse_engine_spec(plugin_spec(f.name)), RunOptions{});
+    FAIL() << "a plugin with fault " << f.name << " ran to the end";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("plugin"), std::string::npos) << what;
+    EXPECT_NE(what.find(f.message), std::string::npos) << what;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryFault, PluginFault,
+    ::testing::Values(Fault{"no_entry", "exports no chainbench_engine_plugin()"},
+                      Fault{"abi", "built for plugin ABI 2, this chainbench loads ABI 1"},
+                      Fault{"size", "its cb_engine is"},
+                      Fault{"null_function", "leaves a required function null"},
+                      Fault{"bad_counter", "counter 0 has no valid name"},
+                      Fault{"create", "could not build scene flight: this plugin builds no worlds"},
+                      Fault{"step", "step 2 failed: the solver diverged"},
+                      Fault{"count", "its world holds 4 bodies, the scene 3"},
+                      Fault{"nan", "returned a non-finite state for body ball"},
+                      Fault{"velocity", "refused to set the velocity of body cart at step 0"}),
+    [](const ::testing::TestParamInfo<Fault>& info) { return info.param.name; });
+
+TEST(Plugin, AMissingFileIsNamed) {
+  try {
+    parse_engine_spec("plugin:path=/nonexistent/libnothing.so");
+    FAIL() << "a missing plugin was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/libnothing.so"), std::string::npos)
+        << e.what();
+  }
+}
+
+// In stress, where every case runs in a child process, a plugin that dies is a crash row like any
+// other engine's, and the stress run itself goes on.
+TEST(Plugin, APluginThatDiesIsACrashInStress) {
+  const StressCase c{"plugin", "stack", {"n=2", "steps=5"}, false};
+  const StressVerdict v = run_stress_case(c, parse_engine_spec(plugin_spec("crash")), 60.0);
+  EXPECT_FALSE(v.finished);
+  EXPECT_EQ(v.verdict(), VerdictClass::kCrash);
+  const StressVerdict error = run_stress_case(c, parse_engine_spec(plugin_spec("step")), 60.0);
+  EXPECT_EQ(error.verdict(), VerdictClass::kError);
+  EXPECT_NE(error.error.find("the solver diverged"), std::string::npos) << error.error;
+}
+
+// The example plugin, the relaxation resolver most people write first: a box dropped onto the
+// ground comes to rest on it, and its counter reaches the run.
+TEST(Plugin, RelaxationExampleRestsABoxOnTheGround) {
+  Scene s;
+  s.name = "drop";
+  s.steps = 120;
+  s.bodies.push_back({"ground", BodyKind::kStatic, {0, -0.5}, {10, 0.5}, {}, 0.0, 1.0, {}, {}});
+  s.bodies.push_back({"box", BodyKind::kDynamic, {0, 2}, {0.5, 0.5}, {}, 1.0, 1.0, {}, {}});
+  const EngineRun run =
+      run_engine(s, parse_engine_spec("plugin:path=" CHAINBENCH_RELAXATION_PLUGIN ",iterations=4"),
+                 RunOptions{});
+  EXPECT_NEAR(run.final_positions[1].x, 0.0, 1e-12);
+  // Resting on the ground's top face (y = 0) with its half height 0.5, less at most a step's fall.
+  EXPECT_NEAR(run.final_positions[1].y, 0.5, 10.0 / 3600.0);
+  EXPECT_TRUE(run.counter("pushes").has_value());
+}
+
+}  // namespace
+}  // namespace chainbench

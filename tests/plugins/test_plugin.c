@@ -1,0 +1,153 @@
+/* A plugin for chainbench's own tests, in C to prove the ABI is plain C. Without a fault it is a
+ * ballistic integrator (semi-implicit Euler, no collisions), whose free fall the tests compare
+ * with the analytic answer. Built once per fault: TEST_PLUGIN_FAULT selects what goes wrong. */
+#include <chainbench/engine_plugin.h>
+
+#include <math.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define FAULT_NONE 0
+#define FAULT_NO_ENTRY 1      /* exports no entry point */
+#define FAULT_ABI 2           /* built for another ABI */
+#define FAULT_SIZE 3          /* a cb_engine of the wrong size */
+#define FAULT_NULL_FUNCTION 4 /* no step function */
+#define FAULT_BAD_COUNTER 5   /* a counter name with a space */
+#define FAULT_CREATE 6        /* refuses every world */
+#define FAULT_STEP 7          /* fails at step 3 */
+#define FAULT_COUNT 8         /* holds one body more than the scene */
+#define FAULT_NAN 9           /* positions turn to NaN at step 2 */
+#define FAULT_CRASH 10        /* dies of SIGSEGV at step 2 */
+#define FAULT_VELOCITY 11     /* refuses every velocity */
+
+#ifndef TEST_PLUGIN_FAULT
+#define TEST_PLUGIN_FAULT FAULT_NONE
+#endif
+
+struct cb_world {
+  uint32_t count;
+  double gravity[2];
+  double dt;
+  int steps;
+  cb_body* bodies;
+};
+
+static void write_error(char* error, size_t size, const char* text) {
+  if (size > 0) snprintf(error, size, "%s", text);
+}
+
+static cb_world* create(const cb_world_desc* desc, char* error, size_t error_size) {
+  uint32_t i;
+  cb_world* w;
+  if (TEST_PLUGIN_FAULT == FAULT_CREATE) {
+    write_error(error, error_size, "this plugin builds no worlds");
+    return NULL;
+  }
+  for (i = 0; i < desc->setting_count; ++i) {
+    char message[128];
+    snprintf(message, sizeof message, "unknown setting \"%s\"", desc->settings[i].key);
+    write_error(error, error_size, message);
+    return NULL;
+  }
+  w = (cb_world*)calloc(1, sizeof *w);
+  if (!w) return NULL;
+  w->count = desc->body_count;
+  w->gravity[0] = desc->gravity[0];
+  w->gravity[1] = desc->gravity[1];
+  w->dt = desc->dt;
+  w->bodies = (cb_body*)calloc(desc->body_count ? desc->body_count : 1, sizeof(cb_body));
+  if (!w->bodies) {
+    free(w);
+    return NULL;
+  }
+  memcpy(w->bodies, desc->bodies, desc->body_count * sizeof(cb_body));
+  return w;
+}
+
+static int set_velocity(cb_world* w, uint32_t body, double vx, double vy, uint32_t axes) {
+  if (TEST_PLUGIN_FAULT == FAULT_VELOCITY || body >= w->count) return 1;
+  if (axes & CB_AXIS_X) w->bodies[body].velocity[0] = vx;
+  if (axes & CB_AXIS_Y) w->bodies[body].velocity[1] = vy;
+  return 0;
+}
+
+static int step(cb_world* w, char* error, size_t error_size) {
+  uint32_t i;
+  ++w->steps;
+  if (TEST_PLUGIN_FAULT == FAULT_STEP && w->steps == 3) {
+    write_error(error, error_size, "the solver diverged");
+    return -1;
+  }
+  if (TEST_PLUGIN_FAULT == FAULT_CRASH && w->steps == 2) raise(SIGSEGV);
+  for (i = 0; i < w->count; ++i) {
+    cb_body* b = &w->bodies[i];
+    if (b->kind == CB_STATIC) continue;
+    if (b->kind == CB_DYNAMIC) {
+      b->velocity[0] += w->dt * b->gravity_scale * w->gravity[0];
+      b->velocity[1] += w->dt * b->gravity_scale * w->gravity[1];
+    }
+    b->center[0] += w->dt * b->velocity[0];
+    b->center[1] += w->dt * b->velocity[1];
+    if (TEST_PLUGIN_FAULT == FAULT_NAN && w->steps >= 2) b->center[0] = NAN;
+  }
+  return 0;
+}
+
+static uint32_t read_state(const cb_world* w, double* positions, double* velocities, double* angles,
+                           uint32_t capacity) {
+  uint32_t i;
+  for (i = 0; i < w->count && i < capacity; ++i) {
+    if (positions) {
+      positions[2 * i] = w->bodies[i].center[0];
+      positions[2 * i + 1] = w->bodies[i].center[1];
+    }
+    if (velocities) {
+      velocities[2 * i] = w->bodies[i].velocity[0];
+      velocities[2 * i + 1] = w->bodies[i].velocity[1];
+    }
+    if (angles) angles[i] = 0.0;
+  }
+  return TEST_PLUGIN_FAULT == FAULT_COUNT ? w->count + 1 : w->count;
+}
+
+static void read_counters(const cb_world* w, double* values) {
+  values[0] = (double)w->steps;
+}
+
+static void destroy(cb_world* w) {
+  if (!w) return;
+  free(w->bodies);
+  free(w);
+}
+
+#if TEST_PLUGIN_FAULT == FAULT_BAD_COUNTER
+static const char* const counter_names[] = {"steps so far"};
+#else
+static const char* const counter_names[] = {"steps_so_far"};
+#endif
+
+static const cb_engine engine = {
+    TEST_PLUGIN_FAULT == FAULT_ABI ? CHAINBENCH_PLUGIN_ABI + 1 : CHAINBENCH_PLUGIN_ABI,
+    TEST_PLUGIN_FAULT == FAULT_SIZE ? sizeof(cb_engine) - 8 : sizeof(cb_engine),
+    "ballistic",
+    CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES,
+    1,
+    counter_names,
+    create,
+    set_velocity,
+    TEST_PLUGIN_FAULT == FAULT_NULL_FUNCTION ? NULL : step,
+    read_state,
+    read_counters,
+    destroy};
+
+#if TEST_PLUGIN_FAULT == FAULT_NO_ENTRY
+CHAINBENCH_PLUGIN_EXPORT const cb_engine* not_the_entry_point(void) {
+  return &engine;
+}
+#else
+CHAINBENCH_PLUGIN_EXPORT const cb_engine* chainbench_engine_plugin(void) {
+  return &engine;
+}
+#endif

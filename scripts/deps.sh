@@ -2,13 +2,15 @@
 # Installs the Debian packages chainbench needs, and only those that are missing.
 #   scripts/deps.sh build   compilers, CMake, Ninja, Box2D, Chipmunk2D, GoogleTest, Google Benchmark,
 #                           CLI11, JSON,
-#                           python3-matplotlib (the plots, and their test)
+#                           python3-matplotlib (the plots, and their test),
+#                           chromium (replay pages played headless: their test, the report's
+#                           screenshots), parallel (GNU parallel: the sharded sweep's test)
 #   scripts/deps.sh run     the same
 #   scripts/deps.sh fuzz    build + clang and its libFuzzer runtime
 set -euo pipefail
 
 build=(cmake ninja-build g++ libbox2d-dev libchipmunk-dev libgtest-dev libgmock-dev libbenchmark-dev
-       libcli11-dev nlohmann-json3-dev python3 python3-matplotlib)
+       libcli11-dev nlohmann-json3-dev python3 python3-matplotlib chromium parallel)
 case "${1:-build}" in
   build) wanted=("${build[@]}") ;;
   run) wanted=("${build[@]}") ;;

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Writes RESULTS/report.md from what scripts/run.sh left in RESULTS/: the run JSON of every
-scene, the sweep JSON, the benchmark JSON and the plots. One page, tables and plots inline.
+scene, the stress and sweep JSON, the benchmark JSON, the plots and the replay pages with their
+screenshots. One page: a conclusion computed from the data, then tables and plots inline.
 
     scripts/report.py results
 """
@@ -12,6 +13,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import bench_table  # noqa: E402  (the README's results tables, reused)
+import report_conclusion  # noqa: E402  (the opening section)
 import stress_table  # noqa: E402  (the README's stress results, reused)
 
 ORDER = ["stack", "pyramid", "many_pyramids", "mass_ratio_stack", "heavy_on_light", "overlap_recovery",
@@ -66,12 +68,46 @@ def all_runs(run):
     return run["runs"] + ([run["reference_run"]] if "reference_run" in run else [])
 
 
-def scene_section(run, plots_dir):
+def replay_lines(root, stem, name):
+    """A link to the scene's replay page and its screenshot, where run.sh made them."""
+    page, shot = f"replay/{stem}.html", f"replay/{stem}.png"
+    if not os.path.exists(os.path.join(root, page)):
+        return []
+    lines = [f"[Replay: every engine's run of `{name}`, step by step]({page}) (one self-contained "
+             "page: open it in a browser)", ""]
+    if os.path.exists(os.path.join(root, shot)):
+        lines += [f"[![{name}: the replay page at the last step]({shot})]({page})", ""]
+    return lines
+
+
+def replay_summary(root):
+    """What the replay pages cost: their sizes and how long headless Chromium took."""
+    path = os.path.join(root, "replay", "timings.json")
+    if not os.path.exists(path):
+        return []
+    pages = load(path)
+    if not pages:
+        return []
+    largest = max(pages, key=lambda p: p["bytes"])
+    slowest = max(pages, key=lambda p: p["open_s"])
+    return [f"Each scene below links a replay page: every engine's boxes step by step, the charts of "
+            f"their distance from the reference, energy-free displacement and penetration, the "
+            f"expectations and every failed check marked. The {len(pages)} pages take "
+            f"{sum(p['bytes'] for p in pages) / 1e6:.1f} MB together, the largest "
+            f"{largest['bytes'] / 1e6:.1f} MB (`{os.path.basename(largest['page'])}`); headless "
+            f"Chromium opened each in at most {slowest['open_s']:.2f} s and played each to its "
+            f"last step at {pages[0]['speed']:g}x in at most "
+            f"{max(p['play_s'] for p in pages):.2f} s (`replay/timings.json`).", ""]
+
+
+def scene_section(run, plots_dir, root=None, stem=None):
     scene = run["scene"]
     name = scene["name"]
     lines = [f"### {name}", ""]
     if scene.get("description"):
         lines += [scene["description"] + f"; {scene['bodies']} bodies, {scene['steps']} steps.", ""]
+    if root:
+        lines += replay_lines(root, stem or name, name)
     errors = {c["engine"]: c["final_position_error"] for c in run.get("comparison", [])}
     speedups = {c["engine"]: c.get("speedup") for c in run.get("comparison", [])}
     runs = all_runs(run)
@@ -221,17 +257,19 @@ def main():
              ". Each engine is judged against the right answer its scene states (its expectations); "
              "✗ marks an engine that misses them.", "",
              "## Summary", ""]
-    lines += summary(runs) + ["", COLUMNS, "", "## Scenes", ""]
-    for run in runs:
-        lines += scene_section(run, plots)
+    stress_path, sweep_path = os.path.join(root, "stress.json"), os.path.join(root, "sweep.json")
+    stress = load(stress_path) if os.path.exists(stress_path) else None
+    sweep = load(sweep_path) if os.path.exists(sweep_path) else None
+    lines[-2:-2] = report_conclusion.conclusion(runs, stress, sweep)
+    lines += summary(runs) + ["", COLUMNS, "", "## Scenes", ""] + replay_summary(root)
+    for stem, run in zip(names, runs):
+        lines += scene_section(run, plots, root, stem)
 
-    stress_path = os.path.join(root, "stress.json")
-    if os.path.exists(stress_path):
-        lines += stress_section(load(stress_path))
+    if stress:
+        lines += stress_section(stress)
 
-    sweep_path = os.path.join(root, "sweep.json")
-    if os.path.exists(sweep_path):
-        lines += sweep_section(load(sweep_path), plots)
+    if sweep:
+        lines += sweep_section(sweep, plots)
 
     bench_path = os.path.join(root, "bench_quick.json")
     if os.path.exists(bench_path):

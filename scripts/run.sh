@@ -4,6 +4,9 @@
 #                                      every example scene file in bench/examples/
 #   results/stress.{json,txt}          chainbench stress, the full matrix
 #   results/traces/<scene>.csv         per-step traces of a few small scenes
+#   results/replay/<scene>.{html,png}  a replay page of every run above, and its last step as
+#                                      headless Chromium shows it (timings.json: how long each
+#                                      page took to open and play)
 #   results/sweep.{json,csv}           a small error-against-run-time sweep
 #   results/bench_quick.json           a quick Google Benchmark subset (scaling)
 #   results/plots/*.png                the plots (scripts/plot.py)
@@ -28,8 +31,9 @@ cmake --build --preset release
 
 cb=build/bin/chainbench
 out=results
-rm -rf "$out/runs" "$out/traces" "$out/plots" "$out/bench_quick.json" "$out/bench_quick.txt"
-mkdir -p "$out/runs" "$out/traces" "$out/plots"
+rm -rf "$out/runs" "$out/traces" "$out/plots" "$out/replay" "$out/bench_quick.json" \
+  "$out/bench_quick.txt"
+mkdir -p "$out/runs" "$out/traces" "$out/plots" "$out/replay"
 start=$SECONDS
 say() { echo "run.sh: $* ($((SECONDS - start)) s)" >&2; }
 
@@ -43,7 +47,7 @@ for scene in "${scenes[@]}"; do
     [[ "$t" == "$scene" ]] && trace=(--trace "$out/traces/$scene.csv")
   done
   "$cb" run --scene "$scene" --json "$out/runs/$scene.json" --csv "$out/runs/$scene.csv" "${trace[@]}" \
-    > "$out/runs/$scene.txt"
+    --replay "$out/replay/$scene.html" > "$out/runs/$scene.txt"
 done
 
 files=()
@@ -52,7 +56,7 @@ for file in bench/examples/*.json; do
   files+=("$scene")
   say "run $file"
   "$cb" run --scene-file "$file" --json "$out/runs/$scene.json" --csv "$out/runs/$scene.csv" \
-    > "$out/runs/$scene.txt"
+    --replay "$out/replay/$scene.html" > "$out/runs/$scene.txt"
 done
 
 say "stress"
@@ -70,8 +74,12 @@ if [[ $bench -eq 1 ]]; then
     --benchmark_out="$out/bench_quick.json" --benchmark_out_format=json > "$out/bench_quick.txt"
 fi
 
-say "plots"
 py=/usr/bin/python3
+say "replay screenshots"
+"$py" scripts/replay_browser.py "$out"/replay/*.html --speed 16 --json "$out/replay/timings.json" \
+  > "$out/replay/timings.txt"
+
+say "plots"
 for scene in "${scenes[@]}" "${files[@]}"; do
   "$py" scripts/plot.py states "$out/runs/$scene.json" --out "$out/plots" > /dev/null
 done

@@ -55,40 +55,6 @@ ordered_json optional_number(const std::optional<double>& v) {
   return v ? json_number(*v) : ordered_json(nullptr);
 }
 
-// An expect entry as the scene states it: kind, body ("*" for every dynamic body), its figures
-// and its window.
-ordered_json expectation_json(const Scene& s, const Expectation& e) {
-  ordered_json j;
-  j["kind"] = to_string(e.kind);
-  if (e.kind != Expectation::Kind::kNoOverlap)
-    j["body"] = e.body == Expectation::kEveryDynamic ? std::string("*") : s.bodies[e.body].name;
-  switch (e.kind) {
-    case Expectation::Kind::kCenter:
-      j["center"] = {e.center.x, e.center.y};
-      j["tolerance"] = e.tolerance;
-      break;
-    case Expectation::Kind::kMoved:
-      j["moved"] = {e.moved.x, e.moved.y};
-      j["tolerance"] = e.tolerance;
-      break;
-    case Expectation::Kind::kBounds:
-      j["min"] = {optional_number(e.min_x), optional_number(e.min_y)};
-      j["max"] = {optional_number(e.max_x), optional_number(e.max_y)};
-      break;
-    case Expectation::Kind::kAtRest:
-      j["at_rest"] = e.speed;
-      break;
-    case Expectation::Kind::kNoOverlap:
-      j["no_overlap"] = e.depth;
-      break;
-  }
-  if (e.windowed()) {
-    j["from_step"] = e.first_state(s.steps);
-    j["to_step"] = e.last_state(s.steps);
-  }
-  return j;
-}
-
 // Every entry's outcome: the expected value, the actual one at the worst state checked, the
 // error there and whether the entry passed.
 ordered_json expect_result_json(const Scene& s, const ExpectResult& r) {
@@ -120,6 +86,38 @@ ordered_json expect_result_json(const Scene& s, const ExpectResult& r) {
 
 ordered_json json_number(double v) {
   return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr);
+}
+
+ordered_json expectation_json(const Scene& s, const Expectation& e) {
+  ordered_json j;
+  j["kind"] = to_string(e.kind);
+  if (e.kind != Expectation::Kind::kNoOverlap)
+    j["body"] = e.body == Expectation::kEveryDynamic ? std::string("*") : s.bodies[e.body].name;
+  switch (e.kind) {
+    case Expectation::Kind::kCenter:
+      j["center"] = {e.center.x, e.center.y};
+      j["tolerance"] = e.tolerance;
+      break;
+    case Expectation::Kind::kMoved:
+      j["moved"] = {e.moved.x, e.moved.y};
+      j["tolerance"] = e.tolerance;
+      break;
+    case Expectation::Kind::kBounds:
+      j["min"] = {optional_number(e.min_x), optional_number(e.min_y)};
+      j["max"] = {optional_number(e.max_x), optional_number(e.max_y)};
+      break;
+    case Expectation::Kind::kAtRest:
+      j["at_rest"] = e.speed;
+      break;
+    case Expectation::Kind::kNoOverlap:
+      j["no_overlap"] = e.depth;
+      break;
+  }
+  if (e.windowed()) {
+    j["from_step"] = e.first_state(s.steps);
+    j["to_step"] = e.last_state(s.steps);
+  }
+  return j;
 }
 
 void compare(RunReport& report) {
@@ -230,15 +228,17 @@ ordered_json run_json(const RunReport& r) {
   if (!s.description.empty()) j["scene"]["description"] = s.description;
   // Sizes and kinds in scene order, so that tools can draw the final states.
   ordered_json half = ordered_json::array(), kinds = ordered_json::array();
-  ordered_json names = ordered_json::array();
+  ordered_json names = ordered_json::array(), centers = ordered_json::array();
   for (const SceneBody& b : s.bodies) {
     half.push_back({b.half_extents.x, b.half_extents.y});
     kinds.push_back(to_string(b.kind));
     names.push_back(b.name);
+    centers.push_back({b.center.x, b.center.y});
   }
   j["scene"]["half_extents"] = std::move(half);
   j["scene"]["kinds"] = std::move(kinds);
   j["scene"]["names"] = std::move(names);
+  j["scene"]["centers"] = std::move(centers);  // as built
   if (!s.expect.empty()) {
     j["scene"]["expect"] = ordered_json::array();
     for (const Expectation& e : s.expect)

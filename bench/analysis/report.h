@@ -39,5 +39,8 @@ void write_run_csv(std::ostream& out, const RunReport& report);
 
 // A number for JSON: null when not finite (JSON has no NaN or infinity).
 nlohmann::ordered_json json_number(double v);
+// An expect entry as the scene states it: kind, body ("*" for every dynamic body), its figures
+// and its window (from_step, to_step) when it has one.
+nlohmann::ordered_json expectation_json(const Scene& scene, const Expectation& e);
 
 }  // namespace chainbench

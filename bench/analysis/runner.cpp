@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <numeric>
-#include <ostream>
 
 namespace chainbench {
 namespace {
@@ -50,43 +48,6 @@ std::optional<bool> EngineRun::stable() const {
          degraded_steps == 0;
 }
 
-namespace {
-
-// A CSV field: quoted, with its quotes doubled.
-std::string quoted(const std::string& text) {
-  std::string q = "\"";
-  for (const char c : text) {
-    if (c == '"') q.push_back('"');
-    q.push_back(c);
-  }
-  q.push_back('"');
-  return q;
-}
-
-}  // namespace
-
-TraceWriter::TraceWriter(std::ostream& out, const Scene& scene) : out_(out) {
-  // Every digit a double holds: far from the origin six significant digits lose whole metres.
-  out_.precision(std::numeric_limits<double>::max_digits10);
-  out_ << "engine,step,time,body,x,y,vx,vy,angle,displacement,penetration\n";
-  for (const SceneBody& b : scene.bodies)
-    names_.push_back(quoted(b.name));
-}
-
-void TraceWriter::begin(const EngineSpec& spec) {
-  label_ = quoted(spec.label());
-  out_ << "# engine " << spec.label() << " = " << spec.str() << '\n';
-}
-
-void TraceWriter::write(int step, double time, const BodyState& s,
-                        std::span<const double> displacement, std::span<const double> penetration) {
-  for (std::size_t i = 0; i < s.position.size(); ++i) {
-    out_ << label_ << ',' << step << ',' << time << ',' << names_[i] << ',' << s.position[i].x
-         << ',' << s.position[i].y << ',' << s.velocity[i].x << ',' << s.velocity[i].y << ','
-         << s.angle[i] << ',' << displacement[i] << ',' << penetration[i] << '\n';
-  }
-}
-
 EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOptions& options) {
   EngineRun run;
   run.spec = spec;
@@ -97,7 +58,8 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
 
   const std::size_t n = scene.bodies.size();
   // Metrics and traces look at every step; expectations only at the states they name.
-  const bool every_step = options.metrics.any() || options.trace != nullptr;
+  const bool observed = !options.observers.empty();
+  const bool every_step = options.metrics.any() || observed;
   ExpectationCheck expect(scene);
   std::optional<MetricsRecorder> recorder;
   if (every_step) recorder.emplace(scene, options.metrics);
@@ -107,7 +69,6 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     const BodyState* previous = before_state == k - 1 ? &before : nullptr;
     expect.observe(k, state, previous, deepest);
   };
-  if (options.trace) options.trace->begin(spec);
   if (every_step || expect.needs_state(0)) {
     engine->read_state(before);
     before_state = 0;
@@ -119,6 +80,8 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
   const std::span<const CounterDef> engine_counters = engine->counter_defs();
   run.defs.assign(engine_counters.begin(), engine_counters.end());
   const std::vector<CounterDef>& counter_defs = run.defs;
+  for (StepObserver* o : options.observers)
+    o->begin(spec, counter_defs);
   std::vector<double> totals(counter_defs.size(), 0.0);
   int steps_taken = 0;
 
@@ -135,7 +98,8 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     const double ms = ms_since(s0);
     if (step > 0) samples.push_back(ms);  // the first step pays for warming caches and buffers
     ++steps_taken;
-    run.degraded_steps += engine->degraded();
+    const bool degraded = engine->degraded();
+    run.degraded_steps += degraded;
     if (!totals.empty()) {
       const std::span<const double> values = engine->counters();
       for (std::size_t c = 0; c < totals.size() && c < values.size(); ++c) {
@@ -148,10 +112,19 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
       engine->read_state(after);
       const bool depth = expect.needs_depth(k);
       if (recorder) {
-        recorder->observe(before, after, k, options.trace != nullptr, depth);
-        if (options.trace) {
-          options.trace->write(k, k * scene.dt, after, recorder->step_displacement(),
-                               recorder->step_penetration());
+        recorder->observe(before, after, k, observed, depth);
+        if (observed) {
+          StepView view;
+          view.step = k;
+          view.time = k * scene.dt;
+          view.state = &after;
+          view.displacement = recorder->step_displacement();
+          view.penetration = recorder->step_penetration();
+          view.counters = engine->counters();
+          view.events = engine->events();
+          view.degraded = degraded;
+          for (StepObserver* o : options.observers)
+            o->observe(view);
         }
         if (expect.needs_state(k)) check(k, after, depth ? &recorder->last_deepest() : nullptr);
       } else {

@@ -10,12 +10,12 @@
 #include "metrics.h"
 #include "registry.h"
 #include "scene.h"
+#include "step_observer.h"
 #include "verdict.h"
 
 #include <atomic>
 #include <cstdint>
 #include <functional>
-#include <iosfwd>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -60,25 +60,10 @@ struct EngineRun {
   std::vector<CounterDef> defs;  // what the engine counts, in the order of `counters`
 };
 
-// The trace CSV of `chainbench run --trace`: one row per body per step, the engine by its label
-// and the body by its name; before an engine's rows, a comment line gives its full spec once:
-//   # engine chain = chain:variant=modern,velocity=inelastic,...
-class TraceWriter {
- public:
-  TraceWriter(std::ostream& out, const Scene& scene);
-  void begin(const EngineSpec& spec);
-  void write(int step, double time, const BodyState& state, std::span<const double> displacement,
-             std::span<const double> penetration);
-
- private:
-  std::ostream& out_;
-  std::vector<std::string> names_;  // quoted for CSV
-  std::string label_;
-};
-
 struct RunOptions {
   MetricSelection metrics;
-  TraceWriter* trace = nullptr;
+  // Shown every step of the run (step_observer.h): traces, replay pages.
+  std::vector<StepObserver*> observers;
   // Called now and then with (steps done, steps in all): for progress bars.
   std::function<void(int, int)> progress;
   // When set, the run stops after the current step and is marked interrupted.

@@ -38,7 +38,12 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
   RunOptions run_options;  // every metric
   run_options.stop = options.stop;
   const bool use_expect = !scene.expect.empty();
-  const int total = static_cast<int>(grid.size()) + (use_expect ? 0 : 1);
+  auto included = [&](std::size_t j) { return options.include.empty() || options.include[j]; };
+  const int points =
+      static_cast<int>(std::count_if(grid.begin(), grid.end(), [&](const EngineSpec& spec) {
+        return included(static_cast<std::size_t>(&spec - grid.data()));
+      }));
+  const int total = points + (use_expect ? 0 : 1);
   int done = 0;
   auto stopped = [&] { return options.stop && options.stop->load(); };
   auto report = [&](const std::string& label) {
@@ -46,6 +51,9 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
   };
   if (use_expect) {
     result.reference = "expect";
+  } else if (points == 0) {
+    result.reference = reference.str();  // nothing to measure here: the reference need not run
+    result.reference_label = reference.label();
   } else {
     result.reference = reference.str();
     result.reference_label = reference.label();
@@ -58,6 +66,7 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
     }
   }
   for (const EngineSpec& spec : grid) {
+    if (!included(static_cast<std::size_t>(&spec - grid.data()))) continue;
     if (stopped()) break;
     report(spec.label());
     SweepPoint point;

@@ -38,10 +38,14 @@ struct SweepResult {
 
 struct SweepOptions {
   const std::atomic<bool>* stop = nullptr;  // set (by Ctrl-C) to stop after the current point
+  // Per grid point, whether to run it (a shard runs a part, shard.h); empty: every point. With
+  // none to run, the reference does not run either.
+  std::vector<bool> include;
   std::function<void(const std::string&, int, int)> progress;  // (label, done, total) points
 };
 
-// Runs every spec on the scene; the reference first (unless the scene has expectations).
+// Runs every spec on the scene (those included); the reference first (unless the scene has
+// expectations).
 SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
                   const EngineSpec& reference, const SweepOptions& options);
 

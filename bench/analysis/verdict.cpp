@@ -98,21 +98,25 @@ std::optional<Verdict> judge(const Scene& scene, const Metrics& m,
   if (!m.finite || !m.max_penetration) return std::nullopt;
   Verdict v;
   auto name = [&](std::size_t b) { return scene.bodies[b].name; };
-  auto add = [&](VerdictClass c, std::string detail) {
-    v.findings.push_back({c, std::move(detail)});
+  auto add = [&](VerdictClass c, std::string detail, std::vector<std::size_t> bodies = {},
+                 int step = -1, std::optional<Vec2d> position = std::nullopt) {
+    v.findings.push_back({c, std::move(detail), std::move(bodies), step, position});
   };
   if (!*m.finite) add(VerdictClass::kUnstable, "a position or velocity became non-finite");
   if (*m.blow_up) {
-    add(VerdictClass::kUnstable, concat({name(m.blow_up_body), " moved at ", fmt_g(m.blow_up_speed),
-                                         " m/s at step ", std::to_string(m.blow_up_step),
-                                         ", above its bound ", fmt_g(m.blow_up_bound), " m/s"}));
+    add(VerdictClass::kUnstable,
+        concat({name(m.blow_up_body), " moved at ", fmt_g(m.blow_up_speed), " m/s at step ",
+                std::to_string(m.blow_up_step), ", above its bound ", fmt_g(m.blow_up_bound),
+                " m/s"}),
+        {m.blow_up_body}, m.blow_up_step);
   }
   if (!m.escaped.empty()) {
     const std::string more = m.escaped.size() > 1
                                  ? concat({" and ", std::to_string(m.escaped.size() - 1), " more"})
                                  : std::string();
     add(VerdictClass::kEscaped,
-        concat({name(m.escaped.front()), more, " ended beyond where anything could send it"}));
+        concat({name(m.escaped.front()), more, " ended beyond where anything could send it"}),
+        m.escaped, scene.steps);
   }
   if (m.tunnel) {
     const std::string all =
@@ -120,7 +124,8 @@ std::optional<Verdict> judge(const Scene& scene, const Metrics& m,
                            : std::string();
     add(VerdictClass::kTunnelled,
         concat({name(m.tunnel->body), " passed through ", name(m.tunnel->through), " ",
-                at_state(m.tunnel->step), all}));
+                at_state(m.tunnel->step), all}),
+        {m.tunnel->body, m.tunnel->through}, m.tunnel->step);
   }
   if (expect && !expect->pass) {
     // The entry furthest from holding first.
@@ -132,14 +137,23 @@ std::optional<Verdict> judge(const Scene& scene, const Metrics& m,
         failed.begin(), failed.end(), [](const ExpectOutcome* a, const ExpectOutcome* b) {
           return !(a->error <= b->error);  // larger first, never-checked (infinite) first of all
         });
-    for (const ExpectOutcome* o : failed)
-      add(VerdictClass::kWrong, describe(scene, *o));
+    for (const ExpectOutcome* o : failed) {
+      std::vector<std::size_t> bodies;
+      if (o->body) bodies.push_back(*o->body);
+      if (o->other) bodies.push_back(*o->other);
+      const Expectation::Kind kind = scene.expect[o->index].kind;
+      const bool located =
+          o->body && kind != Expectation::Kind::kAtRest && kind != Expectation::Kind::kNoOverlap;
+      add(VerdictClass::kWrong, describe(scene, *o), std::move(bodies), o->state,
+          located ? std::optional<Vec2d>(o->position) : std::nullopt);
+    }
   }
   if (m.worst_overlap && m.worst_overlap->depth > m.worst_overlap->tolerance) {
     const PairOverlap& w = *m.worst_overlap;
     add(VerdictClass::kPenetrating,
         concat({name(w.a), " and ", name(w.b), " overlap ", fmt_g(w.depth), " m ", at_state(w.step),
-                " (tolerance ", fmt_g(w.tolerance), " m)"}));
+                " (tolerance ", fmt_g(w.tolerance), " m)"}),
+        {w.a, w.b}, w.step);
   }
   if (degraded_steps > 0) {
     add(VerdictClass::kBudget,

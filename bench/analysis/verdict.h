@@ -46,6 +46,12 @@ const char* to_string(VerdictClass c);
 struct Finding {
   VerdictClass what = VerdictClass::kOk;
   std::string detail;  // names the body, the step and the figure: "box2 sank 0.82 m into box1"
+  // Where and when, for pages that mark it: the bodies concerned (scene indices, the one that
+  // failed first), the state (steps taken; -1 when no one state is to blame) and, for a failed
+  // expectation, the body's centre there.
+  std::vector<std::size_t> bodies;
+  int step = -1;
+  std::optional<Vec2d> position;
 };
 
 struct Verdict {

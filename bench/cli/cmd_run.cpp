@@ -4,10 +4,15 @@
 #include "input_error.h"
 #include "output_file.h"
 #include "progress.h"
+#include "replay_page.h"
+#include "replay_recorder.h"
 #include "report.h"
+#include "run_scene.h"
 #include "runner.h"
 #include "scene_file.h"
 #include "scene_library.h"
+#include "text_table.h"
+#include "trace_writer.h"
 #include "verdict.h"
 
 #include <algorithm>
@@ -17,18 +22,6 @@
 
 namespace chainbench {
 namespace {
-
-struct RunArgs {
-  std::string scene;
-  std::string scene_file;
-  std::vector<std::string> sets;
-  std::string engines;    // empty: every engine's defaults that can run the scene
-  std::string reference;  // empty: the registry's reference engine
-  int steps = 0;
-  std::string json, csv, trace;
-  std::string metrics = "all";
-  std::vector<std::string> require;
-};
 
 // What keeps a required engine's run from passing: each expectation it missed and a verdict
 // other than ok. Empty when it passes.
@@ -40,7 +33,9 @@ std::vector<std::string> shortfalls(const EngineRun& run) {
   return out;
 }
 
-int run(const RunArgs& a) {
+}  // namespace
+
+int run_scene(const RunArgs& a) {
   // Everything the user typed is checked before anything runs. A built-in scene is built for the
   // run's length, so that its right answer follows it.
   if (!a.scene_file.empty() && !a.sets.empty())
@@ -76,13 +71,23 @@ int run(const RunArgs& a) {
     // A verdict needs stability and penetration.
     options.metrics.stability = options.metrics.penetration = true;
   }
+  if (!a.replay.empty()) {
+    check_replay_size(scene);
+    options.metrics = MetricSelection{};  // the page marks every failed check
+  }
   auto json_out = open_output(a.json, "--json");
   auto csv_out = open_output(a.csv, "--csv");
   auto trace_out = open_output(a.trace, "--trace");
+  auto replay_out = open_output(a.replay, a.replay_option);
   std::optional<TraceWriter> trace;
   if (trace_out) {
     trace.emplace(*trace_out, scene);
-    options.trace = &*trace;
+    options.observers.push_back(&*trace);
+  }
+  std::optional<ReplayRecorder> replay;
+  if (replay_out) {
+    replay.emplace(scene, reference);
+    options.observers.push_back(&*replay);
   }
 
   Progress progress;
@@ -94,14 +99,22 @@ int run(const RunArgs& a) {
     progress.clear();
     return r;
   };
-  for (const EngineSpec& spec : engines)
-    report.runs.push_back(run_one(spec));
-  if (reference) {
-    report.reference_spec = *reference;
-    const bool included = std::any_of(report.runs.begin(), report.runs.end(),
-                                      [&](const EngineRun& r) { return r.spec == *reference; });
-    if (!included) report.reference = run_one(*reference);
+  // A replay measures every engine from the reference at every step, so the reference runs
+  // first; the report keeps the engines in the order given.
+  const bool included =
+      reference && std::find(engines.begin(), engines.end(), *reference) != engines.end();
+  if (reference) report.reference_spec = *reference;
+  if (reference && !included && replay) report.reference = run_one(*reference);
+  std::vector<std::optional<EngineRun>> runs(engines.size());
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t k = 0; k < engines.size(); ++k) {
+      const bool first = replay && reference && engines[k] == *reference;
+      if ((pass == 0) == first) runs[k] = run_one(engines[k]);
+    }
   }
+  for (std::optional<EngineRun>& r : runs)
+    report.runs.push_back(std::move(*r));
+  if (reference && !included && !replay) report.reference = run_one(*reference);
   compare(report);
 
   print_run_table(std::cout, report);
@@ -113,6 +126,18 @@ int run(const RunArgs& a) {
   finish_output(json_out.get(), a.json);
   finish_output(csv_out.get(), a.csv);
   finish_output(trace_out.get(), a.trace);
+  if (replay_out) {
+    ReplayPageOptions page;
+    page.generator = "chainbench " CHAINBENCH_VERSION;
+    page.max_bytes = static_cast<std::size_t>(a.replay_mb * 1e6);
+    const ReplayPageSummary written = write_replay_page(*replay_out, report, *replay, page);
+    finish_output(replay_out.get(), a.replay);
+    std::cout << "replay: wrote " << a.replay << " (" << fmt_g(written.bytes / 1e6, 3)
+              << " MB; centres to " << fmt_g(written.quantum, 3) << " m, "
+              << (written.stride == 1 ? std::string("every step")
+                                      : "one step in " + std::to_string(written.stride))
+              << ")\n";
+  }
   int status = 0;
   if (!required.empty() && scene.expect.empty()) {
     std::cerr << "chainbench: note: the scene states no expectations here; --require judges the "
@@ -128,8 +153,6 @@ int run(const RunArgs& a) {
   }
   return status;
 }
-
-}  // namespace
 
 void add_run_command(CLI::App& app, int* status) {
   auto args = std::make_shared<RunArgs>();
@@ -151,6 +174,11 @@ void add_run_command(CLI::App& app, int* status) {
   run_app->add_option("--csv", args->csv, "write one CSV row per engine here");
   run_app->add_option("--trace", args->trace,
                       "write every body's state after every step here (CSV)");
+  run_app->add_option("--replay", args->replay,
+                      "write a page that plays every engine's run here (HTML, self-contained)");
+  run_app->add_option("--replay-mb", args->replay_mb, "the replay page's size limit, MB")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 10000.0));
   run_app
       ->add_option("--metrics", args->metrics,
                    "all, none, or a comma list of displacement, penetration, stability")
@@ -164,7 +192,7 @@ void add_run_command(CLI::App& app, int* status) {
   run_app->callback([args, status, scene, file] {
     if (scene->count() == 0 && file->count() == 0)
       throw InputError("run: give --scene NAME or --scene-file FILE");
-    *status = run(*args);
+    *status = run_scene(*args);
   });
 }
 

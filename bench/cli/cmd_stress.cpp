@@ -5,9 +5,12 @@
 #include "output_file.h"
 #include "progress.h"
 #include "registry.h"
+#include "scene_library.h"
+#include "shard.h"
 #include "stress.h"
 
 #include <algorithm>
+#include <exception>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -21,7 +24,26 @@ struct StressArgs {
   std::string filter;
   double timeout = 120.0;
   std::string json;
+  std::string shard;  // "K/N", or empty: the whole matrix
 };
+
+// Everything the matrix's verdicts depend on: each case's scene, every engine, the timeout.
+std::string describe_matrix(const std::vector<StressCase>& cases,
+                            const std::vector<EngineSpec>& engines, double timeout) {
+  std::string whole = "stress\ntimeout " + std::to_string(timeout) + "\n";
+  for (const StressCase& c : cases) {
+    std::string scene;
+    try {
+      scene = scene_identity(make_scene(c.scene, c.sets));
+    } catch (const std::exception& e) {
+      scene = e.what();  // the case reports it as its error verdict
+    }
+    whole += "case " + c.label() + " " + scene + "\n";
+  }
+  for (const EngineSpec& e : engines)
+    whole += "engine " + e.str() + "\n";
+  return whole;
+}
 
 int run(const StressArgs& a) {
   const std::vector<EngineSpec> engines =
@@ -45,20 +67,37 @@ int run(const StressArgs& a) {
     if ((!a.quick || c.quick) && selected(c.label())) cases.push_back(c);
   }
   if (cases.empty()) throw InputError("stress: no case matches --filter \"" + a.filter + "\"");
+  // Runs are numbered case by case, engine by engine; a shard runs its part of them.
+  const Shard shard = a.shard.empty() ? Shard{} : parse_shard(a.shard);
+  const std::size_t units = cases.size() * engines.size();
+  std::vector<std::size_t> ran;
+  for (std::size_t u = 0; u < units; ++u) {
+    if (shard.has(u)) ran.push_back(u);
+  }
 
   Progress progress;
   std::vector<StressVerdict> verdicts;
   int done = 0;
-  const int total = static_cast<int>(cases.size() * engines.size());
-  for (const StressCase& c : cases) {
-    for (const EngineSpec& e : engines) {
-      progress.update(c.label() + " / " + e.label(), done++, total);
-      verdicts.push_back(run_stress_case(c, e, a.timeout));
-    }
+  for (const std::size_t u : ran) {
+    const StressCase& c = cases[u / engines.size()];
+    const EngineSpec& e = engines[u % engines.size()];
+    progress.update(c.label() + " / " + e.label(), done++, static_cast<int>(ran.size()));
+    verdicts.push_back(run_stress_case(c, e, a.timeout));
   }
   progress.clear();
-  print_stress_table(std::cout, verdicts);
-  if (json_out) *json_out << stress_json(verdicts, a.quick).dump(2) << '\n';
+  if (verdicts.empty()) {
+    std::cout << "part " << shard.index << "/" << shard.count << " holds none of the " << units
+              << " runs\n";
+  } else {
+    print_stress_table(std::cout, verdicts);
+  }
+  nlohmann::ordered_json json = stress_json(verdicts, a.quick);
+  if (!shard.whole()) {
+    const ShardOrigin origin{"stress", CHAINBENCH_VERSION,
+                             grid_fingerprint(describe_matrix(cases, engines, a.timeout)), units};
+    json["shard"] = shard_json(origin, shard, ran);
+  }
+  if (json_out) *json_out << json.dump(2) << '\n';
   finish_output(json_out.get(), a.json);
   if (std::none_of(engines.begin(), engines.end(),
                    [](const EngineSpec& e) { return is_gate(e); })) {
@@ -92,6 +131,9 @@ void add_stress_command(CLI::App& app, int* status) {
       ->capture_default_str()
       ->check(CLI::Range(1.0, 86400.0));
   s->add_option("--json", args->json, "write the chainbench.stress/1 JSON here");
+  s->add_option("--shard", args->shard,
+                "K/N: run the K-th of N parts of the matrix (runs K, K+N, ...); chainbench merge "
+                "joins the parts' JSON");
   s->footer(
       "Verdicts, worst first: crash, hang, error, unstable, escaped, tunnelled, wrong, "
       "penetrating, budget, ok (skipped: the engine cannot do what the case needs).\nExit status 1 "

@@ -6,6 +6,7 @@
 #include "registry.h"
 #include "scene_file.h"
 #include "scene_library.h"
+#include "shard.h"
 #include "sweep.h"
 
 #include <atomic>
@@ -27,6 +28,7 @@ struct SweepArgs {
   std::string reference;  // empty: the registry's accurate reference
   int steps = 0;
   std::string json, csv;
+  std::string shard;  // "K/N", or empty: the whole grid
 };
 
 int run(const SweepArgs& a) {
@@ -72,6 +74,21 @@ int run(const SweepArgs& a) {
   }
   const EngineSpec reference =
       a.reference.empty() ? accurate_reference() : parse_engine_spec(a.reference);
+  // Points are numbered over the scenes in the order they run; a shard runs its part of them.
+  const Shard shard = a.shard.empty() ? Shard{} : parse_shard(a.shard);
+  std::string whole = "sweep\nreference " + reference.str() + "\n";
+  std::vector<std::vector<bool>> include(scenes.size());
+  std::vector<std::vector<std::size_t>> units(scenes.size());
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    whole += "scene " + scene_identity(scenes[k]) + "\n";
+    for (const EngineSpec& spec : grids[k]) {
+      whole += spec.str() + "\n";
+      include[k].push_back(shard.has(next));
+      if (shard.has(next)) units[k].push_back(next);
+      ++next;
+    }
+  }
   auto json_out = open_output(a.json, "--json");
   auto csv_out = open_output(a.csv, "--csv");
 
@@ -82,6 +99,7 @@ int run(const SweepArgs& a) {
   for (const Scene& scene : scenes) {
     SweepOptions options;
     options.stop = &g_stop;
+    options.include = include[&scene - scenes.data()];
     options.progress = [&](const std::string& label, int done, int total) {
       progress.update(scene.name + ": " + label, done, total);
     };
@@ -97,7 +115,18 @@ int run(const SweepArgs& a) {
   }
   for (const std::string& note : notes)
     std::cout << "note: " << note << '\n';
-  if (json_out) *json_out << sweep_json(results).dump(2) << '\n';
+  nlohmann::ordered_json json = sweep_json(results);
+  if (!shard.whole()) {
+    std::vector<std::size_t> ran;  // the units of the points measured, as the JSON lists them
+    for (std::size_t k = 0; k < results.size(); ++k)
+      ran.insert(ran.end(), units[k].begin(), units[k].begin() + results[k].points.size());
+    json["shard"] =
+        shard_json({"sweep", CHAINBENCH_VERSION, grid_fingerprint(whole), next}, shard, ran);
+    std::cout << "note: part " << shard.index << "/" << shard.count << " of the grid, "
+              << ran.size() << " of its " << next
+              << " points; pareto marks compare these alone (chainbench merge marks the whole)\n";
+  }
+  if (json_out) *json_out << json.dump(2) << '\n';
   if (csv_out) write_sweep_csv(*csv_out, results);
   finish_output(json_out.get(), a.json);
   finish_output(csv_out.get(), a.csv);
@@ -130,6 +159,9 @@ void add_sweep_command(CLI::App& app, int* status) {
       ->check(CLI::Range(1, 10'000'000));
   sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here");
   sweep_app->add_option("--csv", args->csv, "write one CSV row per point here");
+  sweep_app->add_option("--shard", args->shard,
+                        "K/N: run the K-th of N parts of the grid (points K, K+N, ...); "
+                        "chainbench merge joins the parts' JSON");
   sweep_app->callback([args, status] { *status = run(*args); });
 }
 

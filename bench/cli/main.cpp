@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
   chainbench::add_run_command(app, &status);
   chainbench::add_sweep_command(app, &status);
   chainbench::add_stress_command(app, &status);
+  chainbench::add_replay_command(app, &status);
+  chainbench::add_merge_command(app, &status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -5,6 +5,7 @@
 #include <chain/world.h>
 
 #include <array>
+#include <unordered_map>
 
 namespace chainbench {
 namespace {
@@ -62,6 +63,7 @@ class ChainEngine final : public Engine {
       def.restitution = scene.restitution_of(b);
       def.friction = scene.friction_of(b);
       ids_.push_back(world_.create_body(def));
+      index_of_[ids_.back().value] = ids_.size() - 1;
     }
     positions_.resize(ids_.size());
     velocities_.resize(ids_.size());
@@ -100,6 +102,13 @@ class ChainEngine final : public Engine {
 
   bool degraded() const override { return world_.last_step_stats().budget_hits > 0; }
 
+  std::span<const EngineEvent> events() const override {
+    events_.clear();
+    for (const chain::CrushEvent& c : world_.crush_events())
+      events_.push_back({"crush", index_of_.at(c.body.value)});
+    return events_;
+  }
+
  private:
   chain::World world_;
   std::vector<chain::BodyId> ids_;
@@ -107,6 +116,8 @@ class ChainEngine final : public Engine {
   double dt_;
   mutable std::vector<chain::Vec2> positions_, velocities_;
   mutable std::array<double, kCount> counters_{};
+  std::unordered_map<std::uint32_t, std::size_t> index_of_;  // body id -> scene index
+  mutable std::vector<EngineEvent> events_;
 };
 
 }  // namespace

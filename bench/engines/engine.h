@@ -36,6 +36,13 @@ struct CounterDef {
   std::string column;  // its title in `run`'s table, or empty to leave it to the JSON
 };
 
+// A body that one of the engine's events of the last step concerns (a crush names the body
+// squeezed), by scene index; `kind` is a short name the engine gives its events.
+struct EngineEvent {
+  const char* kind = "";
+  std::size_t body = 0;
+};
+
 class Engine {
  public:
   virtual ~Engine() = default;
@@ -48,6 +55,8 @@ class Engine {
   virtual std::span<const double> counters() const { return {}; }
   // Whether the engine cut the last step short to bound its work: the run is then `budget`.
   virtual bool degraded() const { return false; }
+  // The bodies the last step's events concern (replay pages mark them); none by default.
+  virtual std::span<const EngineEvent> events() const { return {}; }
 };
 
 }  // namespace chainbench

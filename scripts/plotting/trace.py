@@ -7,15 +7,48 @@ import math
 from .common import LINE_STYLES, InputError, file_stem, note_below, pyplot, save, styles
 
 
+class _EngineSteps:
+    """One engine's bodies' latest displacement and penetration, and its steps summed so far."""
+
+    def __init__(self):
+        self.disp, self.pen, self.total, self.steps, self.last = {}, {}, 0.0, {}, 0
+
+    def set(self, body, disp, pen):
+        self.total += disp - self.disp.get(body, 0.0)
+        self.disp[body], self.pen[body] = disp, pen
+
+    def close(self, upto, time_of):
+        """Sums every step after the last one closed, up to upto, with the values as they are:
+        a step without rows repeats the rows before it."""
+        deepest = max(self.pen.values(), default=0.0)
+        for s in range(self.last + 1, upto + 1):
+            self.steps[s] = [time_of(s), self.total, deepest]
+        self.last = max(self.last, upto)
+
+
 def load_trace(path):
     """({engine: {step: [time, displacement summed over bodies, max penetration]}}, number of
-    rows with a non-finite value, left out), streamed from a trace CSV without keeping rows."""
-    needed = ("engine", "step", "time", "displacement", "penetration")
-    per_engine, skipped, line, key, acc = {}, 0, 1, None, None
+    rows with a non-finite value, left out), streamed from a trace CSV without keeping rows.
+
+    chainbench's trace (format 2) writes a body's row only when it changed: a missing row repeats
+    the body's previous one, so every step counts every body seen so far, up to the "# steps"
+    line's count; time is step * dt from the "# dt" line. A file with a time column and a row per
+    body and step (format 1) reads as before."""
+    needed = ("engine", "step", "body", "displacement", "penetration")
+    per_engine, skipped, line, meta = {}, 0, 1, {}
+
+    def rows_of(f):
+        for text in f:
+            if text.startswith("#"):  # the format, dt, steps, and each engine's full spec once
+                words = text.split()
+                if len(words) > 2 and words[1] in ("dt", "steps"):
+                    meta[words[1]] = float(words[2])
+                continue
+            yield text
+
     try:
         with open(path, newline="", encoding="utf-8") as f:
-            # Lines starting with # name each engine's full spec once; the rows carry its label.
-            reader = csv.reader(line for line in f if not line.startswith("#"))
+            reader = csv.reader(rows_of(f))
             header = next(reader, None)  # None if the file is empty, [] if its first line is blank
             if not header:
                 raise InputError(f"{path}: " + ("empty file" if header is None else "no header "
@@ -24,26 +57,46 @@ def load_trace(path):
             missing = ", ".join(c for c in needed if c not in header)
             if missing:
                 raise InputError(f"{path}: not a chainbench trace (no column {missing})")
-            ie, istep, itime, idisp, ipen = (header.index(c) for c in needed)
+            ie, istep, ibody, idisp, ipen = (header.index(c) for c in needed)
+            itime = header.index("time") if "time" in header else None
+            times = {}  # step -> time, from a time column
+
+            def time_of(step):
+                if itime is not None:
+                    return times[step]
+                if "dt" not in meta:
+                    raise ValueError("no time column and no '# dt' line before the rows")
+                return step * meta["dt"]
+
+            current, step = None, None
             for line, row in enumerate(reader, start=2):
                 if len(row) != len(header):
                     raise ValueError(f"{len(row)} fields, expected {len(header)}")
-                if (row[ie], row[istep]) != key:  # rows come grouped by engine and step
-                    key = (row[ie], row[istep])
-                    acc = per_engine.setdefault(row[ie], {}).setdefault(
-                        int(row[istep]), [float(row[itime]), 0.0, 0.0])
+                row_step = int(row[istep])
+                if current is None or row[ie] != current[0] or row_step != step:
+                    if current is not None and row[ie] != current[0]:
+                        current[1].close(step, time_of)  # rows come grouped by engine and step
+                    current = (row[ie], per_engine.setdefault(row[ie], _EngineSteps()))
+                    current[1].close(row_step - 1, time_of)
+                    step = row_step
+                if itime is not None:
+                    times[row_step] = float(row[itime])
                 disp, pen = float(row[idisp]), float(row[ipen])
-                if math.isfinite(disp) and math.isfinite(pen):
-                    acc[1], acc[2] = acc[1] + disp, max(acc[2], pen)
-                else:
+                if not (math.isfinite(disp) and math.isfinite(pen)):
                     skipped += 1
+                    disp, pen = 0.0, 0.0
+                current[1].set(row[ibody], disp, pen)
+            if current is not None:
+                current[1].close(step, time_of)
+            for engine in per_engine.values():  # steps after an engine's last rows repeat them
+                engine.close(int(meta.get("steps", 0)), time_of)
     except OSError as e:
         raise InputError(f"{path}: cannot read: {e.strerror}") from None
     except (ValueError, csv.Error) as e:  # UnicodeDecodeError is a ValueError
         raise InputError(f"{path}: line {line}: {e}") from None
     if not per_engine:
         raise InputError(f"{path}: no data rows (expected a chainbench trace CSV)")
-    return per_engine, skipped
+    return {name: e.steps for name, e in per_engine.items()}, skipped
 
 
 def plot_trace(path, trace, out_dir, svg, name):

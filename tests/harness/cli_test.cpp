@@ -93,10 +93,20 @@ TEST(Cli, CsvAndTraceAreWritten) {
   std::getline(csv, row);
   EXPECT_EQ(header.rfind("scene,engine,bodies,steps", 0), 0u);
   EXPECT_EQ(row.rfind("squeeze,\"chain:variant=modern", 0), 0u) << row;
-  int lines = 0;
-  for (std::string l; std::getline(trace, l);)
-    ++lines;
-  EXPECT_EQ(lines, 2 + 10 * 3);  // header, the spec line, 10 steps of 3 bodies
+  int comments = 0, lift = 0, others = 0;
+  std::getline(trace, header);
+  EXPECT_EQ(header, "engine,step,body,x,y,vx,vy,angle,displacement,penetration");
+  for (std::string l; std::getline(trace, l);) {
+    if (l.rfind('#', 0) == 0) {
+      ++comments;
+    } else {
+      (l.find(",lift,") != std::string::npos ? lift : others)++;
+    }
+  }
+  EXPECT_EQ(comments, 4);  // the format, dt, steps, the engine's spec
+  // The lift descends every step; the ground and the box stay put and are written once.
+  EXPECT_EQ(lift, 10);
+  EXPECT_EQ(others, 2);
 }
 
 struct BadCall {
@@ -111,37 +121,43 @@ class RefusedCall : public ::testing::TestWithParam<BadCall> {};
 
 INSTANTIATE_TEST_SUITE_P(
     Cli, RefusedCall,
-    ::testing::Values(BadCall{"run", "give --scene NAME or --scene-file FILE"},
-                      BadCall{"run --scene nope", "unknown scene \"nope\""},
-                      BadCall{"run --scene stack --set n=1e12", "out of range"},
-                      BadCall{"run --scene stack --set colour=3", "no parameter \"colour\""},
-                      BadCall{"run --scene stack --engines chain:speed=2", "unknown key \"speed\""},
-                      BadCall{"run --scene stack --engines havok", "unknown engine \"havok\""},
-                      BadCall{"run --scene stack --steps 0", "--steps"},
-                      BadCall{"run --scene stack --metrics speed", "unknown metric"},
-                      BadCall{"run --scene stack --scene-file x.json", "excludes"},
-                      BadCall{"run --scene-file /nonexistent.json",
-                              "/nonexistent.json: no such file"},
-                      BadCall{"run --scene-file /tmp", "/tmp: is a directory, not a scene file"},
-                      BadCall{"run --scene stack --engines chain --require box2d",
-                              "--require box2d: not among the engines run (chain)"},
-                      BadCall{"run --scene stack --require chain:colour=3", "unknown key"},
-                      BadCall{"run --scene stack --json /nonexistent/dir/out.json", "cannot write"},
-                      BadCall{"run --scene stack --json -", "give a file name"},
-                      BadCall{"run --scene stack --set n=abc", "\"abc\" is not a number"},
-                      BadCall{"run --scene stack --set n=2.5", "whole number"},
-                      BadCall{"run --scene stack --set size=NaN", "not a finite number"},
-                      BadCall{"run --scene stack --set size=1e999", "not a finite number"},
-                      BadCall{"run --scene stack --set size=0", "out of range [0.01, 100]"},
-                      BadCall{"run --scene stack --set n", "expected KEY=VALUE"},
-                      BadCall{"run --scene stack --engines chain:passes=abc", "not a number"},
-                      BadCall{"run --scene stack --engines chain:passes=1e99", "out of range"},
-                      BadCall{"run --scene stack --engines chain:variant=1999", "modern|seed2014"},
-                      BadCall{"run --scene stack --engines ,", "empty entry"},
-                      BadCall{"stress --filter nothing-matches-this", "no case matches"},
-                      BadCall{"stress --timeout 0", "--timeout"},
-                      BadCall{"sweep --scene stack --grid foo=1", "unknown engine"},
-                      BadCall{"frobnicate", "subcommand"}),
+    ::testing::Values(
+        BadCall{"run", "give --scene NAME or --scene-file FILE"},
+        BadCall{"run --scene nope", "unknown scene \"nope\""},
+        BadCall{"run --scene stack --set n=1e12", "out of range"},
+        BadCall{"run --scene stack --set colour=3", "no parameter \"colour\""},
+        BadCall{"run --scene stack --engines chain:speed=2", "unknown key \"speed\""},
+        BadCall{"run --scene stack --engines havok", "unknown engine \"havok\""},
+        BadCall{"run --scene stack --steps 0", "--steps"},
+        BadCall{"run --scene stack --metrics speed", "unknown metric"},
+        BadCall{"run --scene stack --scene-file x.json", "excludes"},
+        BadCall{"run --scene-file /nonexistent.json", "/nonexistent.json: no such file"},
+        BadCall{"run --scene-file /tmp", "/tmp: is a directory, not a scene file"},
+        BadCall{"run --scene stack --engines chain --require box2d",
+                "--require box2d: not among the engines run (chain)"},
+        BadCall{"run --scene stack --require chain:colour=3", "unknown key"},
+        BadCall{"run --scene stack --json /nonexistent/dir/out.json", "cannot write"},
+        BadCall{"run --scene stack --json -", "give a file name"},
+        BadCall{"run --scene stack --set n=abc", "\"abc\" is not a number"},
+        BadCall{"run --scene stack --set n=2.5", "whole number"},
+        BadCall{"run --scene stack --set size=NaN", "not a finite number"},
+        BadCall{"run --scene stack --set size=1e999", "not a finite number"},
+        BadCall{"run --scene stack --set size=0", "out of range [0.01, 100]"},
+        BadCall{"run --scene stack --set n", "expected KEY=VALUE"},
+        BadCall{"run --scene stack --engines chain:passes=abc", "not a number"},
+        BadCall{"run --scene stack --engines chain:passes=1e99", "out of range"},
+        BadCall{"run --scene stack --engines chain:variant=1999", "modern|seed2014"},
+        BadCall{"run --scene stack --engines ,", "empty entry"},
+        BadCall{"stress --filter nothing-matches-this", "no case matches"},
+        BadCall{"stress --timeout 0", "--timeout"},
+        BadCall{"sweep --scene stack --grid foo=1", "unknown engine"},
+        BadCall{"sweep --scene stack --shard 0/3", "--shard 0/3: expected K/N"},
+        BadCall{"stress --quick --shard 2", "--shard 2: expected K/N"},
+        BadCall{"replay --scene stack", "--out is required"},
+        BadCall{"replay --scene random_pile --set n=100000 --out /tmp/x.html",
+                "more than a page holds"},
+        BadCall{"merge /nonexistent/part.json", "/nonexistent/part.json: cannot read"},
+        BadCall{"merge /tmp", "/tmp: is a directory"}, BadCall{"frobnicate", "subcommand"}),
     [](const auto& info) { return "Case" + std::to_string(info.index); });
 
 TEST_P(RefusedCall, ExitsWithStatusTwoAndSaysWhy) {
@@ -310,6 +326,40 @@ TEST(Cli, QuickStressWritesAVerdictForEveryCaseAndEngine) {
   EXPECT_GT(j["cases"][4]["crush_events"].get<int>(), 0) << j["cases"][4]["case"];
   // The table prints every class it met, and what each rests on.
   EXPECT_NE(r.out.find("runs:"), std::string::npos) << r.out;
+}
+
+// The page of a run has its engines in the order given even though the reference runs first,
+// measures every other engine from it, and without a reference charts no distance from one.
+TEST(Cli, RunWritesAReplayPageOfItsEngines) {
+  const std::string page = temp("replay.html");
+  Result r = chainbench(
+      "run --scene push_row --set n=2 --steps 20 --engines chain,box2d --replay " + page);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_LT(r.out.find("chain  "), r.out.find("box2d (ref)")) << r.out;
+  EXPECT_NE(r.out.find("replay: wrote " + page), std::string::npos) << r.out;
+  auto data = [&] {
+    std::ifstream in(page);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string open = "id=\"replay-data\">";
+    const std::size_t from = text.find(open) + open.size();
+    return nlohmann::json::parse(text.substr(from, text.find("</script>", from) - from));
+  };
+  nlohmann::json j = data();
+  ASSERT_EQ(j["engines"].size(), 2u);
+  EXPECT_EQ(j["engines"][0]["label"], "chain");
+  EXPECT_EQ(j["reference"], 1);
+  EXPECT_EQ(j["engines"][0]["series"]["error_max"].size(), 21u);
+  EXPECT_GT(j["engines"][0]["series"]["error_max"][20].get<double>(), 0.0);
+
+  r = chainbench(
+      "run --scene push_row --set n=2 --steps 20 --engines chain --reference none "
+      "--replay " +
+      page);
+  ASSERT_EQ(r.status, 0) << r.out;
+  j = data();
+  EXPECT_TRUE(j["reference"].is_null());
+  EXPECT_FALSE(j["engines"][0]["series"].contains("error_max"));
+  EXPECT_EQ(j["engines"][0]["series"]["efd"].size(), 21u);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The runner: timing samples, metrics only when asked, chain statistics, expectations, traces.
 #include "runner.h"
 #include "scene_library.h"
+#include "trace_writer.h"
 
 #include <gtest/gtest.h>
 
@@ -55,26 +56,64 @@ TEST(Runner, ExpectationsPassOrFailPerEngine) {
   EXPECT_GT(inelastic.expect->max_error, 0.1);
 }
 
-// A row per body per step, the engine by its label and the body by its name, and the engine's
-// full spec once, on a comment line before its rows.
-TEST(Runner, TraceHasARowPerBodyPerStepAndTheSpecOnce) {
-  const Scene s = make_scene("squeeze", {"steps=5"});
+// A row per body at step 1, then a row only where something changed; the engine by its label,
+// the body by its name, the engine's full spec once on a comment line before its rows.
+TEST(Runner, TraceWritesChangedRowsOnlyAndTheSpecOnce) {
+  const Scene s = make_scene("push_into_wall", {"n=3", "steps=5"});
   std::ostringstream out;
   TraceWriter trace(out, s);
   RunOptions options;
-  options.trace = &trace;
+  options.observers.push_back(&trace);
   run_engine(s, parse_engine_spec("chain:velocity=zero"), options);
   std::istringstream in(out.str());
-  std::string line;
-  std::vector<std::string> lines;
-  while (std::getline(in, line))
-    lines.push_back(line);
-  ASSERT_EQ(lines.size(), 2u + 5 * 3);  // header, spec, 5 steps of 3 bodies
-  EXPECT_EQ(lines[0], "engine,step,time,body,x,y,vx,vy,angle,displacement,penetration");
-  EXPECT_EQ(lines[1],
+  std::vector<std::string> rows, comments;
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header, "engine,step,body,x,y,vx,vy,angle,displacement,penetration");
+  for (std::string line; std::getline(in, line);)
+    (line.rfind('#', 0) == 0 ? comments : rows).push_back(line);
+  ASSERT_EQ(comments.size(), 4u);
+  EXPECT_EQ(comments[1], "# dt 0.016666666666666666 s (time = step * dt)");
+  EXPECT_EQ(comments[2].rfind("# steps 5 ", 0), 0u) << comments[2];
+  EXPECT_EQ(comments[3],
             "# engine chain:velocity=zero = " + parse_engine_spec("chain:velocity=zero").str());
-  EXPECT_EQ(lines[2].rfind("\"chain:velocity=zero\",1,", 0), 0u) << lines[2];
-  EXPECT_NE(lines[3].find(",\"box\","), std::string::npos) << lines[3];  // body 1, by name
+  // Step 1: all five bodies (pusher, three boxes, wall). Against the wall the boxes never move;
+  // the driven pusher creeps by rounding (1e-17 m a step), so only its row comes back.
+  ASSERT_EQ(rows.size(), s.bodies.size() + 4) << out.str();
+  EXPECT_EQ(rows[0].rfind("chain:velocity=zero,1,pusher,", 0), 0u) << rows[0];
+  EXPECT_EQ(rows[4].rfind("chain:velocity=zero,1,wall,", 0), 0u) << rows[4];
+  for (int step = 2; step <= 5; ++step) {
+    const std::string& row = rows[s.bodies.size() + step - 2];
+    EXPECT_EQ(row.rfind("chain:velocity=zero," + std::to_string(step) + ",pusher,", 0), 0u) << row;
+  }
+}
+
+// A moving body has a row every step, with every digit of its position.
+TEST(Runner, TraceWritesEveryStepOfAMovingBodyInFullPrecision) {
+  const Scene s = make_scene("push_row", {"n=2", "steps=4"});
+  std::ostringstream out;
+  TraceWriter trace(out, s);
+  RunOptions options;
+  options.observers.push_back(&trace);
+  const EngineRun run = run_engine(s, parse_engine_spec("chain"), options);
+  std::istringstream in(out.str());
+  std::vector<std::string> last_row(s.bodies.size());
+  int rows = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("chain,", 0) != 0) continue;
+    ++rows;
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+      if (line.find("," + s.bodies[i].name + ",") != std::string::npos) last_row[i] = line;
+    }
+  }
+  EXPECT_EQ(rows, 4 * 3);  // the pusher and both boxes move in every step
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    // step,body,x: the x after "chain,4,NAME,"
+    const std::string& row = last_row[i];
+    const std::size_t at = ("chain,4," + s.bodies[i].name + ",").size();
+    ASSERT_EQ(row.rfind("chain,4," + s.bodies[i].name + ",", 0), 0u) << row;
+    EXPECT_EQ(std::stod(row.substr(at)), run.final_positions[i].x) << row;
+  }
 }
 
 TEST(Runner, SameSceneSameEngineSameBits) {

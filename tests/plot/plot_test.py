@@ -106,15 +106,24 @@ def run_json():
             "reference_run": run(BOX2D.format(20, 1), 0.05, 0.2), "comparison": []}
 
 
-def trace_csv():
+def trace_csv(rows_left_out=True):
     """Two engines, each spec once on a comment line and its label on every row, 30 steps of three
-    named bodies; the values span several decades (a log axis)."""
-    lines = ["engine,step,time,body,x,y,vx,vy,angle,displacement,penetration"]
+    named bodies, 40 steps declared; the values span several decades (a log axis). As chainbench
+    writes it, the first engine's rows after step 1 are left out where they would repeat (only
+    "box 0" changes); rows_left_out=False writes the older format: a row per body and step and a
+    time column."""
+    columns = "engine,step,time,body" if not rows_left_out else "engine,step,body"
+    lines = [columns + ",x,y,vx,vy,angle,displacement,penetration"]
+    if rows_left_out:
+        lines += ["# chainbench trace 2", "# dt 0.016666666666666666 s", "# steps 40"]
     for engine, scale in ((MODERN, 1e-3), (BOX2D.format(8, 1), 1.0)):
         lines.append(f"# engine {label(engine)} = {engine}")
         for step in range(1, 31):
             for body in range(3):
-                lines.append(f'"{label(engine)}",{step},{step / 60:.6g},"box {body}",0,{body},0,0,0,'
+                if rows_left_out and engine == MODERN and step > 1 and body > 0:
+                    continue
+                time = "" if rows_left_out else f"{step / 60:.6g},"
+                lines.append(f'"{label(engine)}",{step},{time}"box {body}",0,{body},0,0,0,'
                              f"{scale * 1e-3 / step},{scale * 10.0 ** -(step % 5)}")
     return "\n".join(lines) + "\n"
 
@@ -232,7 +241,8 @@ class PlotTest(unittest.TestCase):
         fig = self.drawn("states", "plot_states", path, plotting("states").load_run(path),
                          self.dir / "unused", False)
         ax = fig.axes[0]
-        self.assertEqual([len(c.get_paths()) for c in ax.collections], [5, 0, 0, 0, 0])
+        # The static bodies, the kinematic ones, then each of the four runs' dynamic ones.
+        self.assertEqual([len(c.get_paths()) for c in ax.collections], [3, 2, 0, 0, 0, 0])
         (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
         self.assertTrue(x0 < -100 and x1 > 100 and y0 < -2 and y1 > 2, (x0, x1, y0, y1))
 
@@ -269,9 +279,27 @@ class PlotTest(unittest.TestCase):
         self.assertEqual(skipped, 0)
         self.assertEqual(list(per_engine), ["chain", "box2d"])
         time, displacement, penetration = per_engine["box2d"][2]
-        self.assertAlmostEqual(time, 2 / 60, places=5)
+        self.assertAlmostEqual(time, 2 / 60, places=12)
         self.assertAlmostEqual(displacement, 3 * 1e-3 / 2)
         self.assertAlmostEqual(penetration, 1e-2)
+        # Rows left out repeat the body's previous row: at step 2 "box 1" and "box 2" still hold
+        # their step-1 values beside the new row of "box 0".
+        _, displacement, penetration = per_engine["chain"][2]
+        self.assertAlmostEqual(displacement, 1e-6 / 2 + 2 * 1e-6)
+        self.assertAlmostEqual(penetration, 1e-4)
+        # The 10 steps after the last rows (the file declares 40) repeat step 30.
+        self.assertEqual(sorted(per_engine["chain"]), list(range(1, 41)))
+        self.assertEqual(per_engine["box2d"][40][1:], per_engine["box2d"][30][1:])
+        self.assertAlmostEqual(per_engine["box2d"][40][0], 40 / 60, places=12)
+
+    def test_trace_with_a_row_per_body_and_step(self):
+        """The first trace format: a time column, every row written."""
+        path = self.write("old.csv", trace_csv(rows_left_out=False))
+        per_engine, _ = plotting("trace").load_trace(path)
+        time, displacement, _ = per_engine["chain"][2]
+        self.assertAlmostEqual(time, 2 / 60, places=5)
+        self.assertAlmostEqual(displacement, 3 * 1e-6 / 2)
+        self.assertEqual(len(per_engine["chain"]), 30)
 
     def test_labels(self):
         """Labels come from chainbench's outputs; the plots only split them."""
@@ -333,7 +361,7 @@ class PlotTest(unittest.TestCase):
         self.check_bad_input("trace", self.write("blank.csv", "\n" + trace_csv()), "no header line")
         header = trace_csv().splitlines()[0]
         self.check_bad_input("trace", self.write("header.csv", header + "\n"), "no data")
-        bad_row = '"chain",1,x,0,0,0,0,0,0,0,0'
+        bad_row = '"chain",x,box,0,0,0,0,0,0,0'
         self.check_bad_input("trace", self.write("nan.csv", f"{header}\n{bad_row}\n"),
                              "line 2")
         binary = self.dir / "binary.csv"

@@ -1,0 +1,32 @@
+// What a run shows its observers after every step (the trace CSV, the replay page): the state,
+// the harness' per-body measures of that step, and the engine's own counters and events. With no
+// observer a run reads nothing it does not need; with one, it reads every step's state back.
+#pragma once
+
+#include "engine.h"
+#include "engine_spec.h"
+
+#include <span>
+
+namespace chainbench {
+
+struct StepView {
+  int step = 0;       // steps taken: 1 after the first
+  double time = 0.0;  // step * dt, s
+  const BodyState* state = nullptr;
+  std::span<const double> displacement;  // per body: energy-free displacement of this step, m
+  std::span<const double> penetration;   // per body: its deepest overlap after this step, m
+  std::span<const double> counters;      // the engine's counters of this step (counter_defs order)
+  std::span<const EngineEvent> events;   // the bodies the engine's events of this step concern
+  bool degraded = false;                 // the engine cut this step short
+};
+
+class StepObserver {
+ public:
+  virtual ~StepObserver() = default;
+  // A run of `spec` starts; `counters` names what StepView::counters will hold.
+  virtual void begin(const EngineSpec& spec, std::span<const CounterDef> counters) = 0;
+  virtual void observe(const StepView& view) = 0;
+};
+
+}  // namespace chainbench

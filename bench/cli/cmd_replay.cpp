@@ -1,0 +1,46 @@
+// chainbench replay: one scene in several engines, written as a page that plays them
+// (replay_page.h); `run --replay FILE` writes the same page beside run's other outputs.
+#include "commands.h"
+#include "engine_choice.h"
+#include "input_error.h"
+#include "registry.h"
+#include "run_scene.h"
+
+#include <memory>
+
+namespace chainbench {
+
+void add_replay_command(CLI::App& app, int* status) {
+  auto args = std::make_shared<RunArgs>();
+  args->replay_option = "--out";
+  CLI::App* r = app.add_subcommand(
+      "replay", "Write one self-contained HTML page that plays every engine's run of a scene");
+  auto* scene = r->add_option("--scene", args->scene, "built-in scene (chainbench list)");
+  auto* file = r->add_option("--scene-file", args->scene_file, "scene file (JSON, schema 1)");
+  scene->excludes(file);
+  r->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
+  r->add_option("--engines", args->engines,
+                "engine specs, comma separated; default: " + default_engine_list() +
+                    ", those that can run the scene");
+  r->add_option("--reference", args->reference,
+                "engine the chart measures the others from, or none; default: " +
+                    default_reference().label());
+  r->add_option("--steps", args->steps, "steps to run instead of the scene's")
+      ->check(CLI::Range(1, 10'000'000));
+  r->add_option("--out", args->replay, "the page to write (HTML)")->required();
+  r->add_option("--max-mb", args->replay_mb,
+                "size limit: beyond it only one step in k keeps its positions")
+      ->capture_default_str()
+      ->check(CLI::Range(0.1, 10000.0));
+  r->footer(
+      "The page needs nothing beside it: open it in a browser, mail it, attach it to a bug "
+      "report. Exit status: 0 written; 2 bad input or usage; 1 the page could not be written in "
+      "full.");
+  r->callback([args, status, scene, file] {
+    if (scene->count() == 0 && file->count() == 0)
+      throw InputError("replay: give --scene NAME or --scene-file FILE");
+    *status = run_scene(*args);
+  });
+}
+
+}  // namespace chainbench

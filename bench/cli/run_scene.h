@@ -1,0 +1,29 @@
+// One scene in several engines, as `run` and `replay` both do it: what the user asked for, and
+// the function that runs it, prints the table and writes the files asked for.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace chainbench {
+
+struct RunArgs {
+  std::string scene;
+  std::string scene_file;
+  std::vector<std::string> sets;
+  std::string engines;    // empty: every engine's defaults that can run the scene
+  std::string reference;  // empty: the registry's reference engine
+  int steps = 0;
+  std::string json, csv, trace;
+  std::string replay;                      // the replay page (replay_page.h), or empty
+  const char* replay_option = "--replay";  // how the user named it, for messages
+  double replay_mb = 20.0;                 // its size limit
+  std::string metrics = "all";
+  std::vector<std::string> require;
+};
+
+// Returns the exit status: 0, or 3 when a --require engine fails; throws InputError for bad
+// input before anything runs.
+int run_scene(const RunArgs& args);
+
+}  // namespace chainbench

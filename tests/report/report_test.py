@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""Tests scripts/report.py on a small synthetic results folder: the report opens with a conclusion
+whose figures come from the data, explains its columns, shows the stress verdicts as a grid, and
+links each scene's replay page with its screenshot inline.
+
+    /usr/bin/python3 tests/report/report_test.py
+"""
+import json
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+SCRIPTS = Path(__file__).resolve().parent.parent.parent / "scripts"
+
+
+def run_entry(label, ms, gate=False, expect=None, verdict="ok"):
+    return {"engine": label + ":spec", "label": label, "gate": gate,
+            "ms_per_step": {"median": ms}, "metrics": {}, "counters": {},
+            "expect": expect, "verdict": {"class": verdict, "detail": "", "findings": []}}
+
+
+def scene(name, a_ms, b_ms, b_miss):
+    return {"schema": "chainbench.run/1",
+            "scene": {"name": name, "bodies": 3, "steps": 60, "expect": [{"kind": "center"}]},
+            "reference": "bee:spec",
+            "runs": [run_entry("ant", a_ms, gate=True, expect={"pass": True, "max_error": 0.0}),
+                     run_entry("bee", b_ms, expect={"pass": b_miss is None,
+                                                     "max_error": b_miss or 0.001},
+                               verdict="ok" if b_miss is None else "wrong")],
+            "comparison": [{"engine": "ant:spec", "final_position_error": {"max": 0, "rms": 0},
+                            "speedup": b_ms / a_ms}]}
+
+
+def stress_case(case, group, label, verdict, known=None):
+    c = {"case": case, "group": group, "label": label, "engine": label + ":spec",
+         "verdict": verdict, "detail": "why"}
+    if known:
+        c["known_failure"] = known
+    return c
+
+
+class ReportTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        root = Path(cls.tmp.name)
+        (root / "runs").mkdir()
+        (root / "replay").mkdir()
+        scenes = {"stack": scene("stack", 0.001, 0.01, None),
+                  "pile": scene("pile", 0.002, 0.05, 1.5),
+                  "row": scene("row", 0.004, 0.002, None)}
+        for name, data in scenes.items():
+            (root / "runs" / f"{name}.json").write_text(json.dumps(data))
+        for name in ("stack", "pile"):  # row has no replay page
+            (root / "replay" / f"{name}.html").write_text("<html></html>")
+            (root / "replay" / f"{name}.png").write_bytes(b"\x89PNG")
+        (root / "replay" / "timings.json").write_text(json.dumps([
+            {"page": "results/replay/stack.html", "bytes": 2_000_000, "steps": 60, "open_s": 0.4,
+             "play_s": 0.3, "speed": 16},
+            {"page": "results/replay/pile.html", "bytes": 500_000, "steps": 60, "open_s": 0.2,
+             "play_s": 0.1, "speed": 16}]))
+        cases = [stress_case("fast", "fast body", "ant", "tunnelled", known="no CCD"),
+                 stress_case("fast", "fast body", "bee", "ok"),
+                 stress_case("tall", "tall stack", "ant", "ok"),
+                 stress_case("tall", "tall stack", "bee", "wrong")]
+        (root / "stress.json").write_text(json.dumps({"schema": "chainbench.stress/1",
+                                                      "cases": cases}))
+        result = subprocess.run([sys.executable, str(SCRIPTS / "report.py"), str(root)],
+                                capture_output=True, text=True, timeout=60)
+        assert result.returncode == 0, result.stderr
+        cls.text = (root / "report.md").read_text()
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def conclusion(self):
+        start = self.text.index("## Conclusion")
+        return self.text[start:self.text.index("## Summary")]
+
+    def test_conclusion_comes_first_with_the_datas_figures(self):
+        self.assertLess(self.text.index("## Conclusion"), self.text.index("## Summary"))
+        c = self.conclusion()
+        self.assertIn("For scenes like these, `ant`: it meets the stated answer on 3 of 3 scenes "
+                      "and is the fastest on 2 of 3", c)
+        # bee's time over ant's: 10x (stack), 25x (pile), 0.5x (row)
+        self.assertIn("`bee` 0.5x (`row`) to 25x (`pile`), median 10x", c)
+        self.assertIn("`bee` on 2 of 3 (misses `pile`; largest 1.5 m on `pile`)", c)
+        self.assertIn("`ant` is ok on 1 of 2 (elsewhere 1 tunnelled; most in fast body (1); "
+                      "1 listed known failure)", c)
+        self.assertIn("Where it breaks (1 stress case: fast body), `bee` is ok on 1 of them", c)
+
+    def test_columns_are_explained(self):
+        self.assertIn("What the columns say:", self.text)
+        self.assertIn("*EFD/body-step m*", self.text)
+
+    def test_stress_is_a_grid(self):
+        self.assertIn("| case | `ant` | `bee` |", self.text)
+        self.assertIn("| fast | **tunnelled** (known) | ok |", self.text)
+
+    def test_scenes_link_their_replay_with_its_screenshot(self):
+        self.assertIn("[Replay: every engine's run of `stack`, step by step](replay/stack.html)",
+                      self.text)
+        self.assertIn("[![pile: the replay page at the last step](replay/pile.png)]"
+                      "(replay/pile.html)", self.text)
+        self.assertNotIn("replay/row.html", self.text)
+        self.assertIn("The 2 pages take 2.5 MB together, the largest 2.0 MB (`stack.html`)",
+                      self.text)
+
+
+if __name__ == "__main__":
+    unittest.main()

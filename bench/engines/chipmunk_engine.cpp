@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 namespace chainbench {
 namespace {
@@ -30,13 +31,24 @@ const std::vector<CounterDef>& counter_list() {
   return list;
 }
 
+// Freeing a space wakes its sleeping bodies, which reads their shapes: the space goes first, and
+// its shapes and bodies after it.
 struct SpaceDeleter {
   void operator()(cpSpace* space) const {
+    std::vector<cpShape*> shapes;
+    std::vector<cpBody*> bodies;
     cpSpaceEachShape(
-        space, [](cpShape* s, void*) { cpShapeFree(s); }, nullptr);
+        space,
+        [](cpShape* s, void* out) { static_cast<std::vector<cpShape*>*>(out)->push_back(s); },
+        &shapes);
     cpSpaceEachBody(
-        space, [](cpBody* b, void*) { cpBodyFree(b); }, nullptr);
+        space, [](cpBody* b, void* out) { static_cast<std::vector<cpBody*>*>(out)->push_back(b); },
+        &bodies);
     cpSpaceFree(space);
+    for (cpShape* s : shapes)
+      cpShapeFree(s);
+    for (cpBody* b : bodies)
+      cpBodyFree(b);
   }
 };
 

@@ -7,7 +7,8 @@ namespace {
 
 const std::vector<CounterDef>& counter_list() {
   static const std::vector<CounterDef> list = {
-      {"contacts", Aggregate::kMean, "touching contacts after each step", ""}};
+      {"contacts", Aggregate::kMean, "touching contacts after each step, sleeping ones included",
+       ""}};
   return list;
 }
 

@@ -11,7 +11,6 @@
 #include "registry.h"
 
 #include <chipmunk/chipmunk.h>
-#include <chipmunk/chipmunk_structs.h>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -27,7 +26,7 @@ namespace {
 
 const std::vector<CounterDef>& counter_list() {
   static const std::vector<CounterDef> list = {
-      {"contacts", Aggregate::kMean, "contact pairs after each step", ""}};
+      {"contacts", Aggregate::kMean, "touching pairs after each step, sleeping ones included", ""}};
   return list;
 }
 
@@ -155,8 +154,24 @@ class ChipmunkEngine final : public Engine {
   }
 
   std::span<const CounterDef> counter_defs() const override { return counter_list(); }
+  // Counted here, outside the timed step. The space's own list of arbiters holds the pairs awake
+  // in the last step only; a sleeping body keeps its pairs in its own list, so every dynamic
+  // body's list is walked and each pair counted once: from its lower body when both are dynamic.
   std::span<const double> counters() const override {
-    contacts_ = static_cast<double>(space_->arbiters->num);
+    std::size_t n = 0;
+    for (cpBody* body : bodies_) {
+      if (cpBodyGetType(body) != CP_BODY_TYPE_DYNAMIC) continue;
+      cpBodyEachArbiter(
+          body,
+          [](cpBody* self, cpArbiter* arb, void* count) {
+            CP_ARBITER_GET_BODIES(arb, a, b);
+            cpBody* other = a == self ? b : a;
+            const bool once = cpBodyGetType(other) != CP_BODY_TYPE_DYNAMIC || self < other;
+            if (once && cpArbiterGetCount(arb) > 0) ++*static_cast<std::size_t*>(count);
+          },
+          &n);
+    }
+    contacts_ = static_cast<double>(n);
     return {&contacts_, 1};
   }
 

@@ -1,6 +1,6 @@
-// The moving scenes (bench/scenes/moving.cpp): each builds a valid scene that states where every
-// dynamic body ends, scales with its size parameter, states the answers its recipe derives, and
-// the modern solver meets them, as Box2D does at these sizes.
+// The moving scenes (bench/scenes/moving.cpp) and the stack wall: each builds a valid scene that
+// states where every dynamic body ends, scales with its size parameter, states the answers its
+// recipe derives, and the modern solver meets them, as Box2D does at these sizes.
 #include "scene_library.h"
 #include "stress.h"
 
@@ -134,6 +134,16 @@ TEST(MovingScenes, ModernSolverAndBox2dMeetEveryAnswer) {
       EXPECT_TRUE(box2d.expect_pass) << box2d.verdict_detail();
     }
   }
+}
+
+TEST(StackWall, IsColumnsOfBoxesAtRest) {
+  const Scene s = make_scene("stack_wall", {"cols=500", "height=10"});
+  EXPECT_EQ(s.bodies.size(), 5001u);
+  ASSERT_EQ(s.expect.size(), 1u);
+  EXPECT_EQ(s.expect[0].kind, Expectation::Kind::kMoved);
+  const StressVerdict v = run_stress_case({"stacking", "stack_wall", {"cols=50"}, false},
+                                          parse_engine_spec("chain"), 60.0);
+  EXPECT_EQ(v.verdict(), VerdictClass::kOk) << v.verdict_detail();
 }
 
 }  // namespace

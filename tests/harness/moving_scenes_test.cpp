@@ -90,7 +90,7 @@ TEST(MovingScenes, SmashSharesTheBlocksMomentumWithEachColumn) {
 // A blade at 2 m/s for 2 s meets the crates whose back faces are within 4 m, plus 1 m for each
 // crate already packed in front of it; those end packed in order against it, the rest unmoved.
 TEST(MovingScenes, BulldozerPacksTheCratesItMeetsAheadOfTheBlade) {
-  const Scene s = make_scene("bulldozer", {"lanes=1", "rows=1"});
+  const Scene s = make_scene("bulldozer", {"lanes=1", "rows=1", "spacing=1"});
   std::vector<double> packed, untouched;
   for (std::size_t b = 0; b < s.bodies.size(); ++b) {
     if (s.bodies[b].kind != BodyKind::kDynamic || s.bodies[b].center.y != 1.25) continue;

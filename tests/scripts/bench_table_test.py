@@ -8,6 +8,10 @@ heap per body, and each scaling family has its table relative to its base size.
     /usr/bin/python3 tests/scripts/bench_table_test.py
 """
 import importlib.util
+import json
+import os
+import stat
+import tempfile
 import unittest
 from pathlib import Path
 
@@ -123,6 +127,41 @@ class MovingTablesTest(unittest.TestCase):
         self.assertEqual(lines[start + 2], "| rows=cols | bodies | ns/body/step | relative to rows=cols=10 |")
         self.assertEqual(lines[start + 4], "| 10 | 5,510 | 50 | 1.00x |")
         self.assertEqual(lines[start + 5], "| 100 | 550,100 | 90 | 1.80x |")
+
+
+class AccuracyRunsTest(unittest.TestCase):
+    """accuracy_runs against a stand-in for chainbench that records its arguments."""
+
+    def run_rows(self, context, runs):
+        with tempfile.TemporaryDirectory() as tmp:
+            exe = os.path.join(tmp, "chainbench")
+            log = os.path.join(tmp, "args.jsonl")
+            with open(exe, "w", encoding="utf-8") as f:
+                f.write("#!/usr/bin/env python3\nimport json, sys\n"
+                        f"open({log!r}, 'a').write(json.dumps(sys.argv[1:]) + '\\n')\n"
+                        "path = sys.argv[sys.argv.index('--json') + 1]\n"
+                        "json.dump({'runs': [], 'comparison': []}, open(path, 'w'))\n")
+            os.chmod(exe, os.stat(exe).st_mode | stat.S_IEXEC)
+            bench_table.accuracy_runs(context, runs, exe, os.path.join(tmp, "runs"))
+            with open(log, encoding="utf-8") as f:
+                return [json.loads(line) for line in f]
+
+    def test_each_size_key_is_set_and_a_slow_resting_row_runs_fewer_steps(self):
+        context = {"chainbench_reference": "ref", "chainbench_family_pyr": "many_pyramids rows,cols"}
+        runs = {("pyr", "fast", "50"): bench("pyr/fast/50", 50.0, 137550, 360),
+                ("pyr", "ref", "50"): bench("pyr/ref/50", 350.0, 137550, 2500)}
+        (args,) = self.run_rows(context, runs)
+        self.assertIn("--set rows=50 --set cols=50", " ".join(args))
+        # 0.4 s a step for both engines: 20 s buys 50 steps.
+        self.assertEqual(args[args.index("--steps") + 1], "50")
+
+    def test_a_moving_row_is_judged_on_the_run_it_was_timed_in(self):
+        context = {"chainbench_reference": "ref", "chainbench_family_rain": "rain cols steps=120"}
+        runs = {("rain", "fast", "1000"): moving_bench("rain/fast/1000", 100.0, 0, 0),
+                ("rain", "ref", "1000"): moving_bench("rain/ref/1000", 900.0, 0, 0)}
+        (args,) = self.run_rows(context, runs)
+        self.assertIn("--set steps=120 --set cols=1000", " ".join(args))
+        self.assertNotIn("--steps", args)
 
 
 if __name__ == "__main__":

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs the Google Benchmark suite (build/bin/chainbench_bench), keeps its JSON in
-# results/bench.json and regenerates README.md's results tables from it. Takes
-# about a minute and a half once built.
+# results/bench.json and regenerates README.md's results tables from it, each row's error beside
+# its speed (one accuracy run of each row's scene, results/bench_runs/). Takes about a quarter of
+# an hour once built: the benchmark, then the accuracy runs.
 # With arguments (they go to the benchmark, e.g. --benchmark_filter=pyramid) it runs that part
 # only, into results/bench_part.json, and prints its tables instead of touching README.md.
 set -euo pipefail

@@ -12,8 +12,13 @@
                                                               run), so that each row shows its
                                                               error beside its speed
 
-A speed claim never stands without its accuracy: with --accuracy, each row gives the subject's
-final-position error against the reference and which engines meet the scene's stated answer.
+A speed claim never stands without its accuracy: with --accuracy, the headline gives every engine's
+error against the moving scenes' stated answers beside its speed, and each row of the results table
+the subject's final-position error against the reference and which engines meet the answer.
+
+The tables, in order: the headline (the moving scenes, where every engine works each step), the
+results (time per step of every engine on every row), the work and memory behind them (contacts
+per step and heap held per body), the subject's scaling per family, and the harness' cost.
 """
 import argparse
 import json
@@ -25,7 +30,7 @@ import sys
 BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
 # An accuracy run takes the scene's own steps unless the engines' timed steps say that would take
 # longer than this; then fewer steps (the row says how many).
-ACCURACY_BUDGET_S = 60.0
+ACCURACY_BUDGET_S = 20.0
 
 
 def load(path):
@@ -47,36 +52,42 @@ def load(path):
 
 
 def family_recipes(context):
-    """{family: (scene, size key or None, [KEY=VALUE...])}, as chainbench_bench records them."""
+    """{family: (scene, [size keys], [KEY=VALUE...])}, as chainbench_bench records them."""
     out = {}
     for key, value in context.items():
         if key.startswith("chainbench_family_"):
-            scene, size_key, *sets = value.split()
-            out[key[len("chainbench_family_"):]] = (scene, None if size_key == "-" else size_key, sets)
+            scene, keys, *sets = value.split()
+            out[key[len("chainbench_family_"):]] = (scene, [] if keys == "-" else keys.split(","), sets)
     return out
+
+
+def listed(context, key):
+    """A comma-separated context entry as a list ("a,b" -> ["a", "b"])."""
+    return [item for item in context.get(key, "").split(",") if item]
 
 
 def accuracy_runs(context, runs, exe, out_dir):
     """Runs every (family, size) row's scene once in each engine it was timed in, against the
-    reference, and returns {(family, size): run JSON}. Steps are capped so that each run stays
-    within ACCURACY_BUDGET_S by the benchmark's own times."""
+    reference, and returns {(family, size): (run JSON, steps or None)}. Steps are capped so that
+    each run stays within ACCURACY_BUDGET_S by the benchmark's own times."""
     recipes = family_recipes(context)
     reference = context.get("chainbench_reference", "")
     os.makedirs(out_dir, exist_ok=True)
     results = {}
     groups = sorted({(f, size) for f, e, size in runs if f in recipes})
     for n, (family, size) in enumerate(groups, 1):
-        scene, size_key, sets = recipes[family]
+        scene, keys, sets = recipes[family]
         engines = [e for (f, e, sz) in runs if f == family and sz == size]
         if reference and reference not in engines:
             continue  # no reference timed on this row: nothing to measure the error against
         per_step_s = sum(ms(runs[(family, e, size)]) for e in engines) / 1e3
         args = [exe, "run", "--scene", scene, "--metrics", "none",
                 "--engines", ",".join(e for e in engines if e != reference), "--reference", reference]
-        for kv in sets + ([f"{size_key}={size}"] if size_key and size else []):
+        for kv in sets + ([f"{key}={size}" for key in keys] if size else []):
             args += ["--set", kv]
+        # A family timed over a window of its run (a moving scene) is judged on that very run.
         steps = None
-        if per_step_s * 300 > ACCURACY_BUDGET_S:
+        if not any(kv.startswith("steps=") for kv in sets) and per_step_s * 300 > ACCURACY_BUDGET_S:
             steps = max(30, int(ACCURACY_BUDGET_S / per_step_s))
             args += ["--steps", str(steps)]
         path = os.path.join(out_dir, f"{family}_{size or 'default'}.json")
@@ -97,7 +108,28 @@ def ms(b):
 
 
 def fmt_ms(v):
-    return "-" if v is None else (f"{v:.3f}" if v < 10 else f"{v:.1f}")
+    """Three decimals, or two significant digits below a microsecond-scale step: 0.00012."""
+    if v is None:
+        return "-"
+    return f"{v:.2g}" if v < 0.001 else (f"{v:.3f}" if v < 10 else f"{v:.1f}")
+
+
+def fmt_count(v):
+    return "-" if v is None else (f"{v:,.0f}" if v >= 10 else f"{v:.2g}")
+
+
+def row_label(recipes, family, size):
+    """`scene` and the settings its family uses, the run length aside: `random_pile` n=1,000."""
+    scene, keys, sets = recipes.get(family, (family, [], []))
+    label = f"`{scene}`" + "".join(f" {kv}" for kv in sets if not kv.startswith("steps="))
+    if keys and size:
+        label += " " + "=".join(keys) + f"={int(size):,}"
+    return label
+
+
+def everyone(run):
+    """Every engine's run in an accuracy run's JSON, the reference's included."""
+    return run["runs"] + ([run["reference_run"]] if run.get("reference_run") else [])
 
 
 def error_cells(accuracy, group, subject):
@@ -110,38 +142,83 @@ def error_cells(accuracy, group, subject):
     for c in run.get("comparison", []):
         if label_of.get(c["engine"]) == subject:
             error = f"{c['final_position_error']['max']:.2g}"
-    everyone = run["runs"] + ([run["reference_run"]] if run.get("reference_run") else [])
-    met = [r["label"] for r in everyone if r.get("expect") and r["expect"].get("pass")]
+    met = [r["label"] for r in everyone(run) if r.get("expect") and r["expect"].get("pass")]
     answer = ", ".join(f"`{m}`" for m in met) if met else "none"
     if steps:
         error += f" ({steps} steps)"
     return error, answer
 
 
-def tables(context, runs, accuracy=None):
-    """The results table (a column per engine label, in the order the benchmarks ran them), the
-    ratio of the reference to the subject (the engines chainbench_bench names in its context),
-    the subject's scaling on random_pile and the harness' cost."""
-    out = []
-    accuracy = accuracy or {}
-    recipes = family_recipes(context)
-    order = list(dict.fromkeys(family for family, engine, size in runs))  # as the benchmark ran
+def answer_error(accuracy, group, engine):
+    """An engine's largest error against the scene's stated answer, and whether it meets it:
+    "0.017 m", "0.07 m, misses", or "" without an accuracy run."""
+    if group not in accuracy:
+        return ""
+    for r in everyone(accuracy[group][0]):
+        if r["label"] == engine and r.get("expect"):
+            return f"{r['expect']['max_error']:.2g} m" + ("" if r["expect"]["pass"] else ", misses")
+    return ""
+
+
+def ordered(runs):
+    """Families in the order the benchmark ran them, engines likewise, and the (family, size)
+    rows in family order, then by size."""
+    order = list(dict.fromkeys(family for family, engine, size in runs if family != "harness"))
     engines = list(dict.fromkeys(engine for family, engine, size in runs if family != "harness"))
-    subject = context.get("chainbench_subject", engines[0] if engines else "")
-    reference = context.get("chainbench_reference", "")
     groups = sorted({(family, size) for family, engine, size in runs if family != "harness"},
-                    key=lambda g: (order.index(g[0]) if g[0] in order else len(order), g[0], int(g[1] or 0)))
+                    key=lambda g: (order.index(g[0]), int(g[1] or 0)))
+    return engines, groups
+
+
+def headline(context, runs, accuracy, subject):
+    """The moving scenes, each at the largest size every engine ran: the subject's time, and how
+    many times faster it steps than each other engine, each with its error beside it."""
+    recipes = family_recipes(context)
+    engines, groups = ordered(runs)
+    others = [e for e in engines if e != subject]
+    rows = []
+    for family in listed(context, "chainbench_moving"):
+        sizes = [size for f, size in groups
+                 if f == family and all((f, e, size) in runs for e in engines)]
+        if sizes and (family, subject, sizes[-1]) in runs:
+            rows.append((family, sizes[-1]))
+    if not rows:
+        return []
+    with_error = bool(accuracy)
+    out = [f"The moving scenes, where every engine works each step and every engine is timed over "
+           f"the same steps: how many times faster `{subject}` steps than each engine"
+           + (", each with its largest error against the scene's stated answer" if with_error else "")
+           + ".", "",
+           f"| moving scene | bodies | `{subject}` ms/step |" + (" error |" if with_error else "")
+           + "".join(f" `{e}` |" for e in others),
+           "|---|---:|---:|" + ("---:|" if with_error else "") + "---|" * len(others)]
+    for family, size in rows:
+        sub = runs[(family, subject, size)]
+        cells = []
+        for e in others:
+            error = answer_error(accuracy, (family, size), e)
+            cells.append(f"{ms(runs[(family, e, size)]) / ms(sub):.1f}x" + (f" ({error})" if error else ""))
+        mine = f" {answer_error(accuracy, (family, size), subject) or '-'} |" if with_error else ""
+        out.append(f"| {row_label(recipes, family, size)} | {int(sub.get('bodies', 0)):,} | "
+                   f"{fmt_ms(ms(sub))} |{mine} " + " | ".join(cells) + " |")
+    return out + [""]
+
+
+def results_table(context, runs, accuracy, subject, reference):
+    """Time per step of every engine on every row, the reference over the subject, the subject's
+    error and who meets the answer (with accuracy runs), and the subject's time per body."""
+    recipes = family_recipes(context)
+    engines, groups = ordered(runs)
     ratio_title = f" {reference} / {subject} |" if reference and reference != subject else ""
     error_title = (f" {subject} vs {reference} max m | meets the scene's answer |"
                    if accuracy and ratio_title else "")
-    out.append("| scene | bodies | " + " | ".join(f"{e} ms/step" for e in engines) + " |" + ratio_title +
-               error_title + f" {subject} ns/body/step |")
-    out.append("|---|---:|" + "---:|" * len(engines) + ("---:|" if ratio_title else "") +
-               ("---:|---|" if error_title else "") + "---:|")
+    out = ["| scene | bodies | " + " | ".join(f"{e} ms/step" for e in engines) + " |" + ratio_title +
+           error_title + f" {subject} ns/body/step |",
+           "|---|---:|" + "---:|" * len(engines) + ("---:|" if ratio_title else "") +
+           ("---:|---|" if error_title else "") + "---:|"]
     for family, size in groups:
         row = {e: runs.get((family, e, size)) for e in engines}
-        any_run = next(b for b in row.values() if b)
-        bodies = int(any_run.get("bodies", 0))
+        bodies = int(next(b for b in row.values() if b).get("bodies", 0))
         t = {e: (ms(b) if b else None) for e, b in row.items()}
         cells = []
         for e in engines:
@@ -156,37 +233,78 @@ def tables(context, runs, accuracy=None):
             ratio += f" {error} | {answer} |"
         sub = row.get(subject)
         per_body = f"{sub['per_body'] * 1e9:.0f}" if sub and "per_body" in sub else "-"
-        scene, key, sets = recipes.get(family, (family, None, []))
-        label = f"`{scene}`" + "".join(f" {kv}" for kv in sets)
-        if key and size:
-            label += f" {key}={int(size):,}"
-        out.append(f"| {label} | {bodies:,} | " + " | ".join(cells) + " |" + ratio + f" {per_body} |")
+        out.append(f"| {row_label(recipes, family, size)} | {bodies:,} | " + " | ".join(cells) + " |"
+                   + ratio + f" {per_body} |")
+    return out
 
-    piles = sorted((int(size), b) for (family, engine, size), b in runs.items()
-                   if family == "random_pile" and engine == subject and size)
-    if piles:
-        out.append("")
-        out.append(f"Scaling of `{subject}` on `random_pile` (time per body per step):")
-        out.append("")
-        out.append("| bodies | ns/body/step | relative to 10k |")
-        out.append("|---:|---:|---:|")
-        base = next((b["per_body"] for n, b in piles if n == 10_000), None)
-        for n, b in piles:
-            rel = f"{b['per_body'] / base:.2f}x" if base else "-"
-            out.append(f"| {n:,} | {b['per_body'] * 1e9:.0f} | {rel} |")
 
+def work_table(context, runs):
+    """Per row and engine: contacts per step (each engine's own count) and heap held per body."""
+    recipes = family_recipes(context)
+    engines, groups = ordered(runs)
+    if not any("bytes_per_body" in b or "contacts" in b for b in runs.values()):
+        return []
+    meanings = [f"`{name[len('chainbench_contacts_'):]}`: {text}" for name, text in context.items()
+                if name.startswith("chainbench_contacts_")]
+    counted = f" ({'; '.join(meanings)})" if meanings else ""
+    out = ["", f"Contacts per step, as each engine counts them{counted}, and the heap a world holds per "
+           "body once built and warmed up (bytes, from the allocator's books):", "",
+           "| scene | " + " | ".join(f"{e} contacts · B/body" for e in engines) + " |",
+           "|---|" + "---:|" * len(engines)]
+    for family, size in groups:
+        cells = []
+        for e in engines:
+            b = runs.get((family, e, size))
+            if not b:
+                cells.append("-")
+                continue
+            held = b.get("bytes_per_body")
+            cells.append(f"{fmt_count(b.get('contacts'))} · " + ("-" if held is None else f"{held:,.0f}"))
+        out.append(f"| {row_label(recipes, family, size)} | " + " | ".join(cells) + " |")
+    return out
+
+
+def scaling_tables(context, runs, subject):
+    """Per scaling family: the subject's time per body per step at each size, and its ratio to the
+    family's base size (about 5-10k bodies)."""
+    recipes = family_recipes(context)
+    out = []
+    for entry in listed(context, "chainbench_scaling"):
+        family, base = entry.split(":")
+        points = sorted((int(size), b) for (f, e, size), b in runs.items()
+                        if f == family and e == subject and size and "per_body" in b)
+        if not points:
+            continue
+        scene, keys, sets = recipes.get(family, (family, [], []))
+        key = "=".join(keys) or "size"
+        base_run = next((b for size, b in points if size == int(base)), None)
+        fixed = "".join(f" {kv}" for kv in sets if not kv.startswith("steps="))
+        out += ["", f"Scaling of `{subject}` on `{scene}`{fixed} (time per body per step):", "",
+                f"| {key} | bodies | ns/body/step | relative to {key}={int(base):,} |",
+                "|---:|---:|---:|---:|"]
+        for size, b in points:
+            rel = f"{b['per_body'] / base_run['per_body']:.2f}x" if base_run else "-"
+            out.append(f"| {size:,} | {int(b.get('bodies', 0)):,} | {b['per_body'] * 1e9:.0f} | {rel} |")
+    return out
+
+
+def tables(context, runs, accuracy=None):
+    """Every table, in the order the module docstring gives."""
+    accuracy = accuracy or {}
+    engines, _ = ordered(runs)
+    subject = context.get("chainbench_subject", engines[0] if engines else "")
+    reference = context.get("chainbench_reference", "")
+    out = headline(context, runs, accuracy, subject)
+    out += results_table(context, runs, accuracy, subject, reference)
+    out += work_table(context, runs)
+    out += scaling_tables(context, runs, subject)
     bare, full = runs.get(("harness", "pyramid100", "0")), runs.get(("harness", "pyramid100", "1"))
     if bare and full:
-        out.append("")
-        out.append(f"Harness cost on `pyramid` base=100: a bare `{subject}` step {ms(bare):.3f} ms; step plus "
-                   f"reading the state back and computing every metric {ms(full):.3f} ms "
-                   f"({ms(full) / ms(bare):.2f}x).")
-
-    cpus = context.get("num_cpus", "?")
-    mhz = context.get("mhz_per_cpu", "?")
-    out.append("")
-    out.append(f"Measured {context.get('date', '?')} on {cpus} CPUs at {mhz} MHz, "
-               f"one benchmark at a time; ratios are from the same run.")
+        out += ["", f"Harness cost on `pyramid` base=100: a bare `{subject}` step {ms(bare):.3f} ms; step "
+                f"plus reading the state back and computing every metric {ms(full):.3f} ms "
+                f"({ms(full) / ms(bare):.2f}x)."]
+    out += ["", f"Measured {context.get('date', '?')} on {context.get('num_cpus', '?')} CPUs at "
+            f"{context.get('mhz_per_cpu', '?')} MHz, one benchmark at a time; ratios are from the same run."]
     return "\n".join(out)
 
 

@@ -1,18 +1,23 @@
 // chainbench_bench: time per step of each engine on the built-in scenes.
 //
 // Each benchmark builds its scene and engine, steps it through a warm-up (the world settles and
-// every buffer reaches its working size), then times single steps. Families are keyed by body
-// count where the scene scales, so --benchmark_format=json carries a complexity fit over it.
-// Counters: bodies, time per body per step, the share of steps cut short, and every counter the
+// every buffer reaches its working size), then times single steps: as many as Google Benchmark
+// needs for a world at rest, or exactly a family's window for a moving scene, so that every
+// engine does the same work (families.h). Families are keyed by size where the scene scales, so
+// --benchmark_format=json carries a complexity fit over it. Counters: bodies, time per body per
+// step, the share of steps cut short, the heap a world holds per body, and every counter the
 // engine declares (registry.h), contacts among them.
 #include "engine.h"
 #include "engine_spec.h"
+#include "families.h"
 #include "metrics.h"
 #include "registry.h"
 #include "scene_library.h"
 
 #include <benchmark/benchmark.h>
+#include <malloc.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -21,29 +26,58 @@
 namespace chainbench {
 namespace {
 
-struct Family {
-  std::string name;  // the benchmark's first name part
-  std::string scene;
-  std::string size_key;    // the --set key that scales the scene, or empty
-  std::vector<int> sizes;  // values of size_key
-  std::vector<std::string> sets;
-  int warmup;
+// Bytes the process has allocated and not freed, from the allocator's own books: the same
+// measure for every engine, whatever it allocates with (malloc, new, its own block pools on top).
+double heap_in_use() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd);
+}
+
+// Sums an engine's counters over the steps counted, as each counter's Aggregate says.
+class CounterTotals {
+ public:
+  explicit CounterTotals(const Engine& engine)
+      : defs_(engine.counter_defs()), totals_(defs_.size(), 0.0) {}
+  void add(const Engine& engine) {
+    const std::span<const double> values = engine.counters();
+    for (std::size_t c = 0; c < totals_.size() && c < values.size(); ++c) {
+      totals_[c] = defs_[c].aggregate == Aggregate::kMax ? std::max(totals_[c], values[c])
+                                                         : totals_[c] + values[c];
+    }
+    ++steps_;
+  }
+  void report(benchmark::State& state) const {
+    for (std::size_t c = 0; c < defs_.size(); ++c) {
+      const bool mean = defs_[c].aggregate == Aggregate::kMean && steps_ > 0;
+      state.counters[defs_[c].name] = mean ? totals_[c] / steps_ : totals_[c];
+    }
+  }
+
+ private:
+  std::span<const CounterDef> defs_;
+  std::vector<double> totals_;
+  int steps_ = 0;
 };
 
 void step_benchmark(benchmark::State& state, const Family& family, const EngineSpec& spec) {
-  std::vector<std::string> sets = family.sets;
-  if (!family.size_key.empty())
-    sets.push_back(family.size_key + "=" + std::to_string(state.range(0)));
-  sets.push_back("steps=10000000");  // drivers and windows must outlast the benchmark
-  const Scene scene = make_scene(family.scene, sets);
+  const Scene scene =
+      make_scene(family.scene, family_sets(family, static_cast<int>(state.range(0))));
+  const double heap_before = heap_in_use();
   const auto engine = make_engine(spec, scene);
   int step = 0;
   for (; step < family.warmup; ++step)
     engine->step(step);
+  const double held = heap_in_use() - heap_before;
+  CounterTotals counted(*engine);
   double degraded = 0.0;
   for (auto _ : state) {
     engine->step(step++);
     degraded += engine->degraded();
+    if (family.window > 0) {  // a moving scene: count every timed step, outside the timing
+      state.PauseTiming();
+      counted.add(*engine);
+      state.ResumeTiming();
+    }
   }
   const auto bodies = static_cast<double>(scene.bodies.size());
   const auto iterations = static_cast<double>(state.iterations());
@@ -52,21 +86,16 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
   state.counters["per_body"] = benchmark::Counter(
       bodies * iterations, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["degraded"] = degraded / iterations;
-  // The engine's own counters, gathered over a few more steps outside the timing (some engines
-  // count by walking their contacts).
-  const std::span<const CounterDef> defs = engine->counter_defs();
-  std::vector<double> totals(defs.size(), 0.0);
-  constexpr int kCounted = 16;
-  for (int k = 0; k < kCounted; ++k) {
-    engine->step(step++);
-    const std::span<const double> values = engine->counters();
-    for (std::size_t c = 0; c < totals.size() && c < values.size(); ++c) {
-      totals[c] = defs[c].aggregate == Aggregate::kMax ? std::max(totals[c], values[c])
-                                                       : totals[c] + values[c] / kCounted;
+  state.counters["bytes_per_body"] = held / bodies;
+  // A world at rest: its counters over a few more steps (some engines count by walking their
+  // contacts, which the timing must not include).
+  if (family.window == 0) {
+    for (int k = 0; k < 8; ++k) {
+      engine->step(step++);
+      counted.add(*engine);
     }
   }
-  for (std::size_t c = 0; c < defs.size(); ++c)
-    state.counters[defs[c].name] = totals[c];
+  counted.report(state);
   state.SetComplexityN(static_cast<benchmark::IterationCount>(bodies));
 }
 
@@ -110,67 +139,70 @@ std::vector<std::pair<EngineSpec, std::size_t>> benchmarked(const std::string& l
 }
 
 void register_all(const std::string& engine_list) {
-  const EngineSpec fastest = default_engines().front();
+  const EngineSpec subject = default_engines().front();
   // What the tables compare: the engine under test and the reference, by their labels.
-  benchmark::AddCustomContext("chainbench_subject", fastest.label());
+  benchmark::AddCustomContext("chainbench_subject", subject.label());
   benchmark::AddCustomContext("chainbench_reference", default_reference().label());
   benchmark::RegisterBenchmark("harness/pyramid100/metrics",
-                               [fastest](benchmark::State& s) { harness_benchmark(s, fastest); })
+                               [subject](benchmark::State& s) { harness_benchmark(s, subject); })
       ->Arg(0)
       ->Arg(1)
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime()
       ->MinTime(0.5);
-  // random_pile is a deep pile (2 sqrt(n) m wide) that the reference engines' default solvers
-  // let sink; shallow_pile, five boxes deep with friction, is one they hold, so that there every
-  // engine does the same work.
-  const std::vector<Family> families = {
-      {"stack", "stack", "", {0}, {}, 120},
-      {"pyramid", "pyramid", "base", {20, 100}, {}, 60},
-      {"many_pyramids", "many_pyramids", "", {0}, {}, 60},
-      {"push_row", "push_row", "n", {100, 10'000}, {}, 30},
-      {"random_pile", "random_pile", "n", {1'000, 10'000, 100'000, 1'000'000}, {}, 30},
-      {"shallow_pile", "random_pile", "n", {10'000}, {"layers=5", "friction=0.5"}, 30},
-  };
   // How to build each family's scene, for the tables' accuracy runs (scripts/bench_table.py):
-  // "SCENE SIZE_KEY [KEY=VALUE...]".
-  for (const Family& family : families) {
-    std::string recipe = family.scene + " " + (family.size_key.empty() ? "-" : family.size_key);
+  // "SCENE KEY[,KEY] [KEY=VALUE...]"; which families are moving, and each scaling series' base.
+  std::string moving, scaling;
+  for (const Family& family : benchmark_families()) {
+    std::string keys;
+    for (const std::string& key : family.size_keys)
+      keys += (keys.empty() ? "" : ",") + key;
+    std::string recipe = family.scene + " " + (keys.empty() ? "-" : keys);
     for (const std::string& set : family.sets)
       recipe += " " + set;
+    if (family.window > 0) recipe += " steps=" + std::to_string(family.warmup + family.window);
     benchmark::AddCustomContext("chainbench_family_" + family.name, recipe);
+    if (family.moving) moving += (moving.empty() ? "" : ",") + family.name;
+    if (family.scaling_base > 0) {
+      scaling +=
+          (scaling.empty() ? "" : ",") + family.name + ":" + std::to_string(family.scaling_base);
+    }
   }
+  benchmark::AddCustomContext("chainbench_moving", moving);
+  // What each engine means by contacts, in its own words.
+  for (const EngineDef& def : engine_registry()) {
+    for (const CounterDef& counter : def.counters) {
+      if (counter.name == "contacts")
+        benchmark::AddCustomContext("chainbench_contacts_" + def.name, counter.help);
+    }
+  }
+  benchmark::AddCustomContext("chainbench_scaling", scaling);
   // Every engine's benchmark settings, named by their labels: pyramid/LABEL/100.
   const auto engines = benchmarked(engine_list);
-  for (const Family& family : families) {
+  for (const Family& family : benchmark_families()) {
     // The smallest size stands for the family when asking what its scenes need.
-    std::vector<std::string> smallest = family.sets;
-    if (!family.size_key.empty())
-      smallest.push_back(family.size_key + "=" + std::to_string(family.sizes.front()));
-    const Scene sample = make_scene(family.scene, smallest);
+    const Scene sample = make_scene(family.scene, family_sets(family, family.sizes.front()));
     for (const auto& [spec, max_bodies] : engines) {
       if (!missing_capability(spec, sample).empty()) continue;  // e.g. friction it does not have
-      {
-        auto* b = benchmark::RegisterBenchmark(
-            (family.name + "/" + spec.label()).c_str(),
-            [family, spec](benchmark::State& s) { step_benchmark(s, family, spec); });
-        b->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.5);
-        bool any = false;
-        for (const int size : family.sizes) {
-          SceneParams params;
-          for (const SceneParam& p : all_params(*find_recipe(family.scene)))
-            params.set(p.key, p.value);
-          for (const std::string& set : family.sets) {
-            const std::size_t eq = set.find('=');
-            params.set(set.substr(0, eq), std::stod(set.substr(eq + 1)));
-          }
-          if (!family.size_key.empty()) params.set(family.size_key, size);
-          if (find_recipe(family.scene)->body_count(params) > max_bodies) continue;
-          b->Arg(size);
-          any = true;
-        }
-        if (any && family.sizes.size() > 1) b->Complexity(benchmark::oN);
+      const std::size_t most =
+          spec.label() == subject.label() ? max_bodies : std::min(max_bodies, family.others_max);
+      std::vector<int> sizes;
+      for (const int size : family.sizes) {
+        if (family_bodies(family, size) <= most) sizes.push_back(size);
       }
+      if (sizes.empty()) continue;
+      auto* b = benchmark::RegisterBenchmark(
+          (family.name + "/" + spec.label()).c_str(),
+          [family, spec](benchmark::State& s) { step_benchmark(s, family, spec); });
+      b->Unit(benchmark::kMillisecond)->UseRealTime();
+      if (family.window > 0) {
+        b->Iterations(family.window);
+      } else {
+        b->MinTime(0.5);
+      }
+      for (const int size : sizes)
+        b->Arg(size);
+      if (sizes.size() > 1) b->Complexity(benchmark::oN);
     }
   }
 }

@@ -25,8 +25,8 @@ double SceneParams::get(const std::string& key) const {
 const std::vector<SceneRecipe>& scene_library() {
   static const std::vector<SceneRecipe> library = [] {
     std::vector<SceneRecipe> all;
-    for (auto family :
-         {stacking_scenes, pushing_scenes, level_scenes, seed2014_scenes, stress_scenes}) {
+    for (auto family : {stacking_scenes, pushing_scenes, level_scenes, moving_scenes,
+                        seed2014_scenes, stress_scenes}) {
       for (SceneRecipe& r : family())
         all.push_back(std::move(r));
     }

@@ -34,7 +34,7 @@ class SceneParams {
 
 struct SceneRecipe {
   std::string name;
-  std::string family;  // stacking, pushing, level, seed2014, stress
+  std::string family;  // stacking, pushing, level, moving, seed2014, stress
   std::string description;
   std::vector<SceneParam> params;  // the scene's own; every scene also takes all_params()'s
   Scene (*build)(const SceneParams&);
@@ -101,5 +101,6 @@ std::vector<SceneRecipe> pushing_scenes();
 std::vector<SceneRecipe> seed2014_scenes();
 std::vector<SceneRecipe> stress_scenes();
 std::vector<SceneRecipe> level_scenes();
+std::vector<SceneRecipe> moving_scenes();
 
 }  // namespace chainbench

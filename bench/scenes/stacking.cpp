@@ -69,6 +69,23 @@ Scene many_pyramids(const SceneParams& p) {
   return s;
 }
 
+// A wall of `cols` touching columns, each `height` unit boxes tall: many short stacks side by
+// side, the layout that scales a stack to any number of bodies without making it taller.
+Scene stack_wall(const SceneParams& p) {
+  Scene s;
+  s.name = "stack_wall";
+  const int cols = p.count("cols"), height = p.count("height");
+  ground(s, 0.5 * cols + 2.0);
+  for (int c = 0; c < cols; ++c) {
+    for (int r = 0; r < height; ++r) {
+      box(s, build::label("b", c, r), BodyKind::kDynamic, {c - 0.5 * (cols - 1), 0.5 + r},
+          {0.5, 0.5});
+    }
+  }
+  build::expect_at_rest_where_built(s);  // upright boxes on horizontal faces: nothing moves
+  return s;
+}
+
 Scene mass_ratio_stack(const SceneParams& p) {
   Scene s;
   s.name = "mass_ratio_stack";
@@ -232,6 +249,15 @@ std::vector<SceneRecipe> stacking_scenes() {
                 (p.count("cols") * triangle(p.count("base")) + 1);
        },
        120},
+      {"stack_wall",
+       "stacking",
+       "a wall of cols touching columns, each height boxes tall",
+       {{"cols", 100, 1, 1000000, true, "columns"}, {"height", 10, 1, 1000, true, "boxes each"}},
+       stack_wall,
+       [](const SceneParams& p) {
+         return static_cast<std::size_t>(p.count("cols")) * p.count("height") + 1;
+       },
+       300},
       {"mass_ratio_stack",
        "stacking",
        "n unit boxes, the top one ratio times heavier than the others",

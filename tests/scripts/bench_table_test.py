@@ -1,11 +1,17 @@
 #!/usr/bin/env python3
 """Tests scripts/bench_table.py on a synthetic Google Benchmark JSON: rows follow the benchmark's
 order, scenes are named with the settings their family uses, the ratio is reference over subject
-from the same run, and with accuracy runs each row carries its error and who meets the answer.
+from the same run, and with accuracy runs each row carries its error and who meets the answer;
+the headline gives the moving scenes' ratios with each engine's error, a table gives contacts and
+heap per body, and each scaling family has its table relative to its base size.
 
     /usr/bin/python3 tests/scripts/bench_table_test.py
 """
 import importlib.util
+import json
+import os
+import stat
+import tempfile
 import unittest
 from pathlib import Path
 
@@ -28,6 +34,27 @@ RUNS = {("stack", "fast", ""): bench("stack/fast", 0.001, 16, 60),
         ("stack", "ref", ""): bench("stack/ref", 0.010, 16, 600),
         ("pile", "fast", "1000"): bench("pile/fast/1000", 0.05, 1003, 50),
         ("pile", "ref", "1000"): bench("pile/ref/1000", 1.0, 1003, 1000)}
+
+
+def moving_bench(name, ms, contacts, held, bodies=11910):
+    b = bench(name, ms, bodies, ms * 1e6 / bodies)
+    b.update(contacts=contacts, bytes_per_body=held)
+    return b
+
+
+MOVING_CONTEXT = {"chainbench_subject": "fast", "chainbench_reference": "ref",
+                  "chainbench_family_rain": "rain cols steps=120",
+                  "chainbench_family_pyr": "many_pyramids rows,cols",
+                  "chainbench_moving": "rain", "chainbench_scaling": "pyr:10",
+                  "chainbench_contacts_fast": "pairs it resolved", "chainbench_contacts_ref": "touching pairs",
+                  "date": "today", "num_cpus": 2, "mhz_per_cpu": 1}
+MOVING_RUNS = {("rain", "fast", "1000"): moving_bench("rain/fast/1000", 1.0, 3480, 668),
+               ("rain", "fast", "10000"): moving_bench("rain/fast/10000", 14.0, 34800, 657, 119903),
+               ("rain", "ref", "1000"): moving_bench("rain/ref/1000", 8.0, 7740, 1006),
+               ("rain", "ref:sleep=1", "1000"): moving_bench("rain/ref:sleep=1/1000", 5.0, 7741, 1010),
+               ("pyr", "fast", "10"): bench("pyr/fast/10", 0.3, 5510, 50),
+               ("pyr", "fast", "100"): bench("pyr/fast/100", 50.0, 550100, 90),
+               ("pyr", "ref", "10"): bench("pyr/ref/10", 3.0, 5510, 500)}
 
 
 def run_json(error, passed):
@@ -55,6 +82,86 @@ class BenchTableTest(unittest.TestCase):
         self.assertIn("| ref / fast | fast vs ref max m | meets the scene's answer |", lines[0])
         self.assertIn("| 10.0x | 0.0094 | `fast`, `ref` |", lines[2])
         self.assertIn("| 20.0x | 0.09 (60 steps) | `fast` |", lines[3])
+
+
+class MovingTablesTest(unittest.TestCase):
+    def test_headline_is_the_moving_scenes_at_the_size_every_engine_ran(self):
+        lines = bench_table.tables(MOVING_CONTEXT, MOVING_RUNS).splitlines()
+        self.assertTrue(lines[0].startswith("The moving scenes"), lines[0])
+        self.assertEqual(lines[2], "| moving scene | bodies | `fast` ms/step | `ref` | `ref:sleep=1` |")
+        # 10,000 columns ran in `fast` only: the headline takes the 1,000 the others ran too.
+        self.assertEqual(lines[4], "| `rain` cols=1,000 | 11,910 | 1.000 | 8.0x | 5.0x |")
+
+    def test_headline_gives_each_engine_its_error_against_the_answer(self):
+        run = {"runs": [{"engine": "FAST", "label": "fast", "expect": {"pass": True, "max_error": 0.0}},
+                        {"engine": "SLEEP", "label": "ref:sleep=1",
+                         "expect": {"pass": False, "max_error": 0.071}}],
+               "reference_run": {"engine": "REF", "label": "ref",
+                                 "expect": {"pass": True, "max_error": 0.0168}},
+               "comparison": [{"engine": "FAST", "final_position_error": {"max": 0.02}}]}
+        lines = bench_table.tables(MOVING_CONTEXT, MOVING_RUNS, {("rain", "1000"): (run, None)}).splitlines()
+        self.assertIn("| error |", lines[2])
+        self.assertEqual(lines[4], "| `rain` cols=1,000 | 11,910 | 1.000 | 0 m | 8.0x (0.017 m) | "
+                                   "5.0x (0.071 m, misses) |")
+
+    def test_sleep_settings_are_columns_of_their_own(self):
+        lines = bench_table.tables(MOVING_CONTEXT, MOVING_RUNS).splitlines()
+        start = next(i for i, line in enumerate(lines) if line.startswith("| scene | bodies |"))
+        self.assertEqual(lines[start], "| scene | bodies | fast ms/step | ref ms/step | ref:sleep=1 ms/step "
+                                       "| ref / fast | fast ns/body/step |")
+        self.assertEqual(lines[start + 2], "| `rain` cols=1,000 | 11,910 | 1.000 | 8.000 | 5.000 | 8.0x | 84 |")
+        self.assertEqual(lines[start + 3], "| `rain` cols=10,000 | 119,903 | 14.0 | - | - | - | 117 |")
+
+    def test_contacts_and_heap_per_body_for_every_engine(self):
+        lines = bench_table.tables(MOVING_CONTEXT, MOVING_RUNS).splitlines()
+        self.assertIn("(`fast`: pairs it resolved; `ref`: touching pairs)", "\n".join(lines))
+        row = next(line for line in lines if line.startswith("| `rain` cols=1,000 | 3,480"))
+        self.assertEqual(row, "| `rain` cols=1,000 | 3,480 · 668 | 7,740 · 1,006 | 7,741 · 1,010 |")
+        # A family without the counters shows dashes, not zeros.
+        pyramids = next(line for line in lines if line.startswith("| `many_pyramids` rows=cols=10 | - ·"))
+        self.assertEqual(pyramids, "| `many_pyramids` rows=cols=10 | - · - | - · - | - |")
+
+    def test_scaling_is_relative_to_the_family_base(self):
+        lines = bench_table.tables(MOVING_CONTEXT, MOVING_RUNS).splitlines()
+        start = lines.index("Scaling of `fast` on `many_pyramids` (time per body per step):")
+        self.assertEqual(lines[start + 2], "| rows=cols | bodies | ns/body/step | relative to rows=cols=10 |")
+        self.assertEqual(lines[start + 4], "| 10 | 5,510 | 50 | 1.00x |")
+        self.assertEqual(lines[start + 5], "| 100 | 550,100 | 90 | 1.80x |")
+
+
+class AccuracyRunsTest(unittest.TestCase):
+    """accuracy_runs against a stand-in for chainbench that records its arguments."""
+
+    def run_rows(self, context, runs):
+        with tempfile.TemporaryDirectory() as tmp:
+            exe = os.path.join(tmp, "chainbench")
+            log = os.path.join(tmp, "args.jsonl")
+            with open(exe, "w", encoding="utf-8") as f:
+                f.write("#!/usr/bin/env python3\nimport json, sys\n"
+                        f"open({log!r}, 'a').write(json.dumps(sys.argv[1:]) + '\\n')\n"
+                        "path = sys.argv[sys.argv.index('--json') + 1]\n"
+                        "json.dump({'runs': [], 'comparison': []}, open(path, 'w'))\n")
+            os.chmod(exe, os.stat(exe).st_mode | stat.S_IEXEC)
+            bench_table.accuracy_runs(context, runs, exe, os.path.join(tmp, "runs"))
+            with open(log, encoding="utf-8") as f:
+                return [json.loads(line) for line in f]
+
+    def test_each_size_key_is_set_and_a_slow_resting_row_runs_fewer_steps(self):
+        context = {"chainbench_reference": "ref", "chainbench_family_pyr": "many_pyramids rows,cols"}
+        runs = {("pyr", "fast", "50"): bench("pyr/fast/50", 50.0, 137550, 360),
+                ("pyr", "ref", "50"): bench("pyr/ref/50", 350.0, 137550, 2500)}
+        (args,) = self.run_rows(context, runs)
+        self.assertIn("--set rows=50 --set cols=50", " ".join(args))
+        # 0.4 s a step for both engines: 20 s buys 50 steps.
+        self.assertEqual(args[args.index("--steps") + 1], "50")
+
+    def test_a_moving_row_is_judged_on_the_run_it_was_timed_in(self):
+        context = {"chainbench_reference": "ref", "chainbench_family_rain": "rain cols steps=120"}
+        runs = {("rain", "fast", "1000"): moving_bench("rain/fast/1000", 100.0, 0, 0),
+                ("rain", "ref", "1000"): moving_bench("rain/ref/1000", 900.0, 0, 0)}
+        (args,) = self.run_rows(context, runs)
+        self.assertIn("--set steps=120 --set cols=1000", " ".join(args))
+        self.assertNotIn("--steps", args)
 
 
 if __name__ == "__main__":

@@ -94,6 +94,9 @@ class ChainResolver {
   std::vector<std::uint32_t> level_, adj_start_, adj_, queue_, level_count_;
   std::vector<Frame> stack_;
   std::vector<std::uint32_t> cands_;
+  std::vector<std::uint32_t> found_;  // one suspect body's overlaps
+  // The near pairs are scanned again once more than one body in this many was filed again since.
+  static constexpr std::uint32_t kRescanShare = 8;
   Frame last_{};                       // the result of the last frame that finished without opening
   std::uint64_t near_generation_ = 0;  // broadphase generation the near pairs were scanned in
 };

@@ -27,8 +27,9 @@ class ChainState {
   // A fresh mark for the next chain.
   void begin_chain();
 
-  // Appends to `out` every body that now overlaps `around`: from its near pairs while no body has
-  // moved half the broadphase slack since the sweep began, else from the grid.
+  // Appends to `out` every body that now overlaps `around`: from its near pairs and the bodies the
+  // broadphase filed again since they were taken, or, when `around` itself was filed again, from
+  // the grid.
   void gather_overlaps(StepContext& ctx, std::uint32_t around,
                        std::vector<std::uint32_t>& out) const;
 

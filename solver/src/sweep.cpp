@@ -100,7 +100,10 @@ bool Sweep::run(StepContext& ctx, ChainState& state) {
   ctx.stats.fast_bodies = static_cast<std::uint32_t>(fast.size());
   if (fast.empty()) return false;
   Bodies& bodies = ctx.bodies;
-  ctx.broadphase.build(bodies);
+  // The grid of earlier steps serves while the body set is the same: integration filed the fast
+  // bodies again where they went (and any other body that moved far), so queries find them.
+  const bool build = !ctx.broadphase.built();
+  if (build) ctx.broadphase.build(bodies);
   if (fast_.size() != bodies.size()) fast_.assign(bodies.size(), 0);
   for (const std::uint32_t i : fast)
     fast_[i] = 1;
@@ -135,7 +138,7 @@ bool Sweep::run(StepContext& ctx, ChainState& state) {
   ctx.stats.swept = static_cast<std::uint32_t>(results_.size());
   for (const std::uint32_t i : fast)
     fast_[i] = 0;
-  return true;
+  return build;
 }
 
 void Sweep::gather_pairs(StepContext& ctx) {

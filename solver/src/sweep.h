@@ -49,7 +49,7 @@ namespace chain::detail {
 class Sweep {
  public:
   // Sweeps the step's fast bodies (ctx.motion.fast()) and what they may meet. Returns true when
-  // there were any: it then built the broadphase, and moved bodies since.
+  // it built the broadphase (the first step after the body set changed), and moved bodies since.
   bool run(StepContext& ctx, ChainState& state);
 
   static constexpr int kMaxSlides = 4;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <string>
 #include <vector>
@@ -137,6 +139,80 @@ TEST(ChainWork, DenseOverlappingPileStaysWithinBudgetAndSeparates) {
   EXPECT_GT(first, 0.0);
   EXPECT_LT(max_penetration(w, ids, half), 1e-3);
   EXPECT_EQ(w.last_step_stats().crush_events, 0u);
+}
+
+// The layout of the harness's overlapping_pile stress case: n boxes of half extent 0.3 to 0.5 m
+// dropped at random into a container half as tall as they need, on a floor between two walls.
+std::vector<BodyId> overlapping_pile(World& w, int n, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  const double width = std::max(6.0, std::sqrt(static_cast<double>(n)));
+  const double height = 0.5 * static_cast<double>(n) / width;
+  std::vector<BodyId> ids = {add_floor(w, 0.5 * width + 2.0)};
+  const double wall = 4.0 * height + 10.0;
+  ids.push_back(w.create_body(static_box(-0.5 * width - 0.5, 0.5 * wall, 0.5, 0.5 * wall)));
+  ids.push_back(w.create_body(static_box(0.5 * width + 0.5, 0.5 * wall, 0.5, 0.5 * wall)));
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    const double h = 0.3 + 0.2 * unit(rng);
+    const double x = -0.5 * width + h + (width - 2.0 * h) * unit(rng);
+    ids.push_back(w.create_body(dynamic_box(x, h + height * unit(rng), h, 4.0 * h * h)));
+  }
+  return ids;
+}
+
+// Issue 2: one step of a 100,000-box overlapping pile did not end in 600 s. Pushes sent bodies
+// far, the broadphase widened every later query by the largest push of the step, and the queries
+// scanned most of the pile: quadratic. Bodies that move far are now filed again where they are.
+// The search work (candidates the broadphase examined) then stays a fixed multiple of the work
+// the step is made of, bodies plus contacts plus pair resolutions (about 38 here), from a small
+// pile to a large one, and resolutions are bounded by the budget: per body it is bounded too.
+TEST(ChainWork, OverlappingPileStepSearchWorkPerBodyIsBounded) {
+  for (const int n : {2000, 20000}) {
+    World w(world_def(Variant::kModern, VelocityRule::kInelastic));
+    overlapping_pile(w, n, 5);
+    const double budget = w.def().budget_per_body;
+    for (int step = 0; step < 2; ++step) {
+      w.step(kDt);
+      const StepStats& st = w.last_step_stats();
+      const double work = static_cast<double>(st.resolve_calls) + st.contacts + n;
+      EXPECT_LT(st.candidates, 60.0 * work) << "n " << n << " step " << step;
+      EXPECT_LT(st.candidates, 60.0 * (budget + 10.0) * n) << "n " << n << " step " << step;
+    }
+  }
+}
+
+// A fast body used to widen the broadphase's one global displacement margin: the step after the
+// sweep rebuilt the grid and rescanned the near pairs, which roughly doubled a step of a resting
+// pyramid with one fast box flying past. The box is now filed again where the sweep left it, and
+// the sweep's build serves the whole step.
+TEST(ChainWork, OneFastBodyDoesNotDoubleAStepsSearchWork) {
+  constexpr int kSteps = 30;
+  // Candidates examined by the first step (which builds the grid and scans the near pairs) and by
+  // all kSteps steps.
+  auto candidates = [](bool with_fast, double& first) {
+    World w(world_def(Variant::kModern, VelocityRule::kInelastic));
+    build_pyramid(w, 40);
+    if (with_fast) {
+      BodyDef shot = dynamic_box(-200.0, 60.0, 0.1);
+      shot.gravity_scale = 0.0;
+      shot.velocity = {600.0, 0.0};
+      w.create_body(shot);
+    }
+    double total = 0.0;
+    for (int step = 0; step < kSteps; ++step) {
+      w.step(kDt);
+      if (with_fast) {
+        EXPECT_EQ(w.last_step_stats().fast_bodies, 1u);
+      }
+      if (step == 0) first = w.last_step_stats().candidates;
+      total += w.last_step_stats().candidates;
+    }
+    return total;
+  };
+  double scan = 0.0, unused = 0.0;
+  const double resting = candidates(false, scan), with_fast = candidates(true, unused);
+  // The fast box's own query along its path is all it adds: far less than a grid scan a step.
+  EXPECT_LT((with_fast - resting) / kSteps, 0.25 * scan) << "resting " << resting;
 }
 
 // Five 1 m boxes between walls 4 m apart cannot all fit: every step ends, reports the squeeze,

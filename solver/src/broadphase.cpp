@@ -74,6 +74,10 @@ void Broadphase::configure(const Bodies& bodies) {
   }
   slack_ = levels_.empty() ? 0.0 : 0.25 * levels_.front().small_half;
   refile_ = 0.25 * slack_;
+  double smallest = std::numeric_limits<double>::infinity();
+  for (std::uint32_t i = 0; i < n; ++i)
+    smallest = std::min({smallest, bodies.hx(i), bodies.hy(i)});
+  free_move_ = n == 0 ? 0.0 : 0.1 * smallest;
   for (Level& level : levels_) {
     level.cell = std::max(2.0 * level.small_half + slack_, kMinCell);
     level.inv_cell = 1.0 / level.cell;

@@ -70,6 +70,9 @@ class Broadphase {
   // How far a body may move from where it was filed before it is filed again: a quarter of the
   // slack, so that two bodies that both stayed within it closed by less than the slack.
   double refile_distance() const { return refile_; }
+  // A tenth of the smallest half extent of any body: a move shorter than this cannot take a body
+  // from kPushOutShare (step_context.h) of the way to another's centre past it.
+  double free_move() const { return free_move_; }
   // Candidate bodies examined by queries and pair scans since configure(): the broadphase's work.
   std::uint64_t examined() const { return examined_; }
 
@@ -199,6 +202,7 @@ class Broadphase {
   double margin_ = 0.0;                 // largest displacement from where a body is filed
   double slack_ = 0.0;
   double refile_ = 0.0;
+  double free_move_ = 0.0;
   std::uint64_t generation_ = 0;
   std::uint64_t built_generation_ = ~std::uint64_t{0};
   mutable std::uint64_t examined_ = 0;

@@ -106,6 +106,7 @@ void ChainState::report_crush(StepContext& ctx, std::uint32_t body, std::uint32_
                               std::uint32_t blocker, int axis) {
   assert(anchor != kNoSlot && blocker != kNoSlot);
   reach(body);
+  if (marks_[body].crushed) return;  // reported once a step, from whichever side found it first
   marks_[body].crushed = true;
   ctx.crushes.push_back({body, anchor, blocker, static_cast<Axis>(axis)});
   ++ctx.stats.crush_events;

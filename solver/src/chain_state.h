@@ -77,7 +77,8 @@ class ChainState {
   bool crushed(std::uint32_t body) const {
     return marks_[body].reached == step_ && marks_[body].crushed;
   }
-  // Reports `body` squeezed between `anchor` and `blocker` and leaves it alone for the step.
+  // Reports `body` squeezed between `anchor` and `blocker` (once a step) and leaves it alone for
+  // the step.
   void report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,
                     std::uint32_t blocker, int axis);
 

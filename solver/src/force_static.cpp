@@ -41,7 +41,10 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
           continue;
         }
         if (!state.spend(ctx)) break;
-        yield(ctx, state, w, c, axis);
+        if (!yield(ctx, state, w, c, axis)) {
+          state.flag(w, c);  // a body beyond w keeps it from yielding: the next sweep takes it
+          continue;
+        }
         cands_.clear();  // w moved: look again from its new place
         state.gather_overlaps(ctx, w, cands_);
         i = static_cast<std::size_t>(-1);
@@ -56,11 +59,19 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
       // A wall the chain placed already, met by another wall of the chain on that wall's free
       // side, rests on the higher of the two: it moves on and its own walls follow (it is
       // queued again). Each such move is further the same way, so this ends.
-      state.wall(c, axis);
       ctx.note_push(c, w, axis, dir);
       // Placed against w rather than moved by the depth: resting stacks rebuild the same
       // positions every step instead of accumulating rounding.
-      ctx.place(c, axis, p(w) + dir * (h(c) + h(w)));
+      const double flush = p(w) + dir * (h(c) + h(w));
+      ctx.place(c, axis, flush);
+      if (p(c) != flush) {
+        // Stopped short by a body in its way (StepContext::move): not flush, so not a wall this
+        // chain can build on; the next sweep resolves what is left.
+        state.visit(c);
+        state.flag(w, c);
+        continue;
+      }
+      state.wall(c, axis);
       state.support(axis, c, -dir, item.anchor);
       queue_.push_back(
           {c, w, item.depth + 1, item.anchor, item.axis, static_cast<std::int8_t>(-dir)});
@@ -69,14 +80,16 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
   queue_.clear();
 }
 
-void ForceStatic::yield(StepContext& ctx, ChainState& state, std::uint32_t w, std::uint32_t c,
+bool ForceStatic::yield(StepContext& ctx, ChainState& state, std::uint32_t w, std::uint32_t c,
                         int axis) {
   const int c_side = ChainState::away(ctx, axis, w, c);
   auto p = [&](std::uint32_t i) { return ctx.bodies.pos(axis, i); };
   auto h = [&](std::uint32_t i) { return ctx.bodies.half(axis, i); };
   ctx.note_push(w, c, axis, -c_side);
-  ctx.place(w, axis, p(c) - c_side * (h(w) + h(c)));
+  const double target = p(c) - c_side * (h(w) + h(c));
+  ctx.place(w, axis, target);
   state.flag(w);  // bodies this wall already pushed may now overlap it again
+  return p(w) == target;
 }
 
 // item.body was pushed against item.wall, away from its backing; an immovable body overlapping

@@ -40,8 +40,9 @@ class ForceStatic {
   };
   // Centres item.body between its wall and an immovable body beyond it, if there is one.
   void crush_check(StepContext& ctx, ChainState& state, const Item& item);
-  // Moves wall w away from c, which lies on w's supported side and is supported there too.
-  void yield(StepContext& ctx, ChainState& state, std::uint32_t w, std::uint32_t c, int axis);
+  // Moves wall w away from c, which lies on w's supported side and is supported there too; false
+  // when a body beyond w stopped it short.
+  bool yield(StepContext& ctx, ChainState& state, std::uint32_t w, std::uint32_t c, int axis);
 
   std::vector<Item> queue_;
   std::vector<std::uint32_t> cands_;

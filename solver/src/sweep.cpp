@@ -57,13 +57,6 @@ Toi time_of_impact(const double r[2], const double u[2], const double ext[2], do
   return toi;
 }
 
-// How deep, as a share of what push-out can undo, a fast body may end in a dynamic body before
-// push-out resolves the pair: push-out separates two boxes along their axis of least overlap, away
-// from each other's centre, so it sends a body back the way it came only while that body has not
-// crossed the other's centre and is less deep along the axis it came in on than across it. The
-// share keeps clear of both edges, so rounding never decides.
-constexpr double kPushOutShare = 0.9;
-
 // The latest time in [toi.at, 1] (step fractions) at which f, moving relative to c by r(t) = r +
 // t u, is still shallow enough for push-out to send it back the way it came in (toi.axis):
 // depth along that axis at most kPushOutShare of the summed half extents there, and at most

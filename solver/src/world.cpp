@@ -204,7 +204,8 @@ void World::step(double dt) {
   detail::StepContext ctx{
       w.bodies, w.broadphase, w.response,
       w.def,    w.stats,      w.crush_records,
-      budget,   w.motion,     w.def.velocity_rule == VelocityRule::kInelastic || rough};
+      budget,   w.motion,     w.def.velocity_rule == VelocityRule::kInelastic || rough,
+      modern};
   if (modern) {
     w.modern.resolve(ctx);
   } else {

@@ -31,7 +31,13 @@
 //     rule): a driven pusher pushes as far at any speed as push-out alone would. So a fast body
 //     never passes through a body that moves as integrated, at any speed. Not guaranteed: if both
 //     bodies are fast and one is stopped earlier in the step by a third body, the other may miss
-//     it; bodies pushed by chains are not swept (a push moves a body at most by an overlap depth).
+//     it.
+//   - Pushes (modern): a push moves a body at once by up to an overlap depth. A push longer than
+//     a tenth of the smallest half extent in the world stops where the body would be 90% of the
+//     way to the centre of a body it meets (across at least half the smaller box), so push-out
+//     never lands a body on or past another's centre, where it would send it on through; what is
+//     left of the overlap is resolved by the chain or the next sweep. Boxes created overlapping
+//     are so pushed apart without one crossing another in a push.
 //
 // The solver depends on the C++ standard library only; this header compiles as C++17 or later.
 // Any function that allocates may also throw std::bad_alloc.

@@ -145,12 +145,8 @@ EngineDef register_chain() {
       "a body pushed out of a pile created twice as dense as it can be is moved by many pushes "
       "in one step (metres, around other boxes); each push is kept short of any centre, but "
       "judged as one straight move from where it started the step, its path crosses a third box";
-  const char* squeeze =
-      "a crushed row takes its whole squeeze at one end, whose boxes then pass each other";
   e.known_failures = {{"overlapping_pile n=1000", "tunnelled", through},
-                      {"overlapping_pile n=200", "tunnelled", through},
-                      {"converging_walls n=10", "unstable", squeeze},
-                      {"converging_walls n=1000", "unstable", squeeze}};
+                      {"overlapping_pile n=200", "tunnelled", through}};
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
     return std::make_unique<ChainEngine>(spec, scene);
   };

@@ -19,6 +19,7 @@ void ChainResolver::resolve(StepContext& ctx) {
         near_pairs_.reserve(4 * n);
   }
   state_.begin_step(ctx);
+  walls_.begin_step(bodies.size());
   fresh_grid_ = sweep_.run(ctx, state_);
   state_.leftover = true;
   for (int pass = 0; pass < ctx.def.max_passes && state_.leftover; ++pass) {
@@ -69,6 +70,7 @@ void ChainResolver::resolve(StepContext& ctx) {
 
 void ChainResolver::forget_slots() {
   state_.forget_slots();
+  walls_.forget_slots();
   std::fill(local_mark_.begin(), local_mark_.end(), 0u);
   mark_ = 0;
   near_generation_ = 0;
@@ -163,7 +165,8 @@ bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, dou
   if (force_static) {
     // Placed against b rather than moved by the depth: resting stacks rebuild the same
     // positions every step instead of accumulating rounding.
-    const double target = p(b) + sign * (h(a) + h(b));
+    // A body of a row squeezed last step keeps the overlap it had (ForceStatic::kept_squeeze).
+    const double target = p(b) + sign * (h(a) + h(b) - walls_.kept_squeeze(ctx, a, b, push_axis));
     f.moved = ctx.place(a, push_axis, target, follower);
     if (p(a) != target) state_.flag(a, b);  // stopped short by a body in its way
     f.backing = static_cast<std::int8_t>(-sign);

@@ -37,6 +37,14 @@ class ChainState {
   static int away(const StepContext& ctx, int axis, std::uint32_t from, std::uint32_t c) {
     return ctx.bodies.pos(axis, c) >= ctx.bodies.pos(axis, from) ? 1 : -1;
   }
+  // The side of `from` that c was on along axis when the step began, or, when they started level
+  // (within the touch tolerance), is on now. A wall placed against its own wall may land on or
+  // past the middle of the next body of its chain; that body is still pushed on the side it was on.
+  static int side_at_start(const StepContext& ctx, int axis, std::uint32_t from, std::uint32_t c) {
+    const double d = ctx.bodies.start_pos(axis, c) - ctx.bodies.start_pos(axis, from);
+    if (std::abs(d) <= ctx.def.touch_tolerance) return away(ctx, axis, from, c);
+    return d > 0.0 ? 1 : -1;
+  }
   bool supported_towards(int axis, std::uint32_t body, int direction) const {
     const Marks& m = marks_[body];
     return m.support_sweep == sweep_ && m.support_dir[axis] == direction;

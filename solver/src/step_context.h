@@ -56,10 +56,13 @@ struct StepContext {
     return d;
   }
 
-  // Puts body i at `target` along axis, or short of it when guarded; returns how far it moved.
-  double place(std::uint32_t i, int axis, double target, std::uint32_t follower = kNoSlot) {
+  // Puts body i at `target` along axis, or short of it when guarded (and `guard`); returns how far
+  // it moved.
+  double place(std::uint32_t i, int axis, double target, std::uint32_t follower = kNoSlot,
+               bool guard = true) {
     double d = target - bodies.pos(axis, i);
-    if (guarded(d) && (d = limit_move(i, axis, d, follower)) != target - bodies.pos(axis, i)) {
+    if (guard && guarded(d) &&
+        (d = limit_move(i, axis, d, follower)) != target - bodies.pos(axis, i)) {
       bodies.pos(axis, i) += d;
     } else {
       bodies.pos(axis, i) = target;  // exactly: resting stacks rebuild the same positions
@@ -67,6 +70,15 @@ struct StepContext {
     broadphase.note_move(i, bodies.x(i), bodies.y(i));
     if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
     return d;
+  }
+
+  // Puts body i at `target` along axis, unguarded: for placements that are a squeeze's answer,
+  // where every body of a row overlaps its neighbours by design.
+  void set(std::uint32_t i, int axis, double target) {
+    const double d = target - bodies.pos(axis, i);
+    bodies.pos(axis, i) = target;
+    broadphase.note_move(i, bodies.x(i), bodies.y(i));
+    if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
   }
 
   // A push moves a body at once by up to an overlap depth, through whatever lies in between: a

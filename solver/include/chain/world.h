@@ -11,6 +11,9 @@
 //      was at the start of the step relative to that body, so the joins between flush tiles are
 //      neither snagged on nor pushed sideways from, and a body never comes out on the far side.
 //   4. Velocities: the velocity rule, then friction (modern); touching flags and crush events.
+//      A body squeezed between two static or kinematic bodies along an axis is centred between
+//      them; a row of bodies squeezed so (modern) shares the squeeze evenly, every contact along it
+//      overlapping by the same depth, and every body of it is reported crushed, once a step.
 //
 // Fast bodies (modern). A dynamic body is fast in a step when it moves more than half its half
 // extent along an axis; a kinematic body, more than its half extent.

@@ -52,11 +52,9 @@ class Broadphase {
   void note_move(std::uint32_t body, double x, double y) {
     const Point& r = ref_[body];
     const double d = std::max(std::abs(x - r.x), std::abs(y - r.y));
-    if (d > refile_) [[unlikely]] {
+    margin_ = std::max(margin_, std::min(d, refile_));
+    if (d > refile_) [[unlikely]]
       refile(body, x, y);
-    } else {
-      margin_ = std::max(margin_, d);
-    }
   }
   // True while no body was filed again since the near pairs were last scanned: every pair that
   // can overlap now is a near pair of that scan (each body has moved at most refile_distance(),

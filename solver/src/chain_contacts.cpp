@@ -44,9 +44,20 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
   // bodies alone. A body filed again since the scan takes its pairs from the broadphase, all at
   // its own turn (those with another such body at the later one), and is skipped in near lists.
   contacts_.clear();
-  const bool any_stale = !bp.near_pairs_hold();
+  if (bp.near_pairs_hold()) {
+    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+      const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
+      for (const std::uint32_t j : state_.near(i)) {
+        if (j < i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
+            (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol) {
+          contacts_.push_back({j, i});
+        }
+      }
+    }
+    return;
+  }
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-    if (any_stale && bp.stale(i)) {
+    if (bp.stale(i)) {
       bp.for_each_overlap(bodies, i, tol, [&](std::uint32_t j) {
         if ((j < i || !bp.stale(j)) && !(bodies.immovable(i) && bodies.immovable(j)))
           contacts_.push_back({std::min(i, j), std::max(i, j)});
@@ -56,7 +67,7 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
     for (const std::uint32_t j : state_.near(i)) {
       if (j < i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
-          (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol && !(any_stale && bp.stale(j))) {
+          (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol && !bp.stale(j)) {
         contacts_.push_back({j, i});
       }
     }

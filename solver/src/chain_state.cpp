@@ -79,27 +79,46 @@ void ChainState::begin_chain() {
 
 void ChainState::gather_overlaps(StepContext& ctx, std::uint32_t around,
                                  std::vector<std::uint32_t>& out) const {
-  const double tol = ctx.def.touch_tolerance;
-  const Broadphase& bp = ctx.broadphase;
-  const Bodies& b = ctx.bodies;
-  const bool any_stale = !bp.near_pairs_hold();
-  if (any_stale && bp.stale(around)) {  // filed again since the near pairs were taken
-    bp.for_each_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
+  if (!ctx.broadphase.near_pairs_hold()) {
+    gather_overlaps_refiled(ctx, around, out);
     return;
   }
   // Every body that moved less than the broadphase's refile distance since the near pairs were
   // taken closed by less than the slack with any other such body: every one of them that overlaps
-  // `around` now is among its near pairs. The bodies filed again since are found in the overlay.
+  // `around` now is among its near pairs.
+  const double tol = ctx.def.touch_tolerance;
+  const Bodies& b = ctx.bodies;
   const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
   for (std::uint32_t k = near_start_[around]; k < near_start_[around + 1]; ++k) {
     const std::uint32_t j = near_[k];
     if ((hx + b.hx(j)) - std::abs(x - b.x(j)) > tol &&
-        (hy + b.hy(j)) - std::abs(y - b.y(j)) > tol && !(any_stale && bp.stale(j))) {
+        (hy + b.hy(j)) - std::abs(y - b.y(j)) > tol) {
       out.push_back(j);
     }
   }
-  if (any_stale)
-    bp.for_each_stale_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
+}
+
+// Kept out of gather_overlaps: the near-pair loop above runs for every body a chain reaches, and
+// the broadphase queries here, inlined into it, slowed it by a tenth.
+[[gnu::noinline]] void ChainState::gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
+                                                           std::vector<std::uint32_t>& out) const {
+  const double tol = ctx.def.touch_tolerance;
+  const Broadphase& bp = ctx.broadphase;
+  const Bodies& b = ctx.bodies;
+  if (bp.stale(around)) {  // filed again since the near pairs were taken: they do not hold for it
+    bp.for_each_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
+    return;
+  }
+  // Its near pairs, less the bodies filed again since, which the overlay then gives.
+  const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
+  for (std::uint32_t k = near_start_[around]; k < near_start_[around + 1]; ++k) {
+    const std::uint32_t j = near_[k];
+    if ((hx + b.hx(j)) - std::abs(x - b.x(j)) > tol &&
+        (hy + b.hy(j)) - std::abs(y - b.y(j)) > tol && !bp.stale(j)) {
+      out.push_back(j);
+    }
+  }
+  bp.for_each_stale_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
 }
 
 void ChainState::report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,

@@ -32,6 +32,9 @@ class ChainState {
   // the grid.
   void gather_overlaps(StepContext& ctx, std::uint32_t around,
                        std::vector<std::uint32_t>& out) const;
+  // gather_overlaps once some body was filed again since the near pairs were taken.
+  void gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
+                               std::vector<std::uint32_t>& out) const;
 
   // Direction in which c is pushed out of `from` along axis (+1 or -1).
   static int away(const StepContext& ctx, int axis, std::uint32_t from, std::uint32_t c) {
@@ -41,7 +44,10 @@ class ChainState {
   // (within the touch tolerance), is on now. A wall placed against its own wall may land on or
   // past the middle of the next body of its chain; that body is still pushed on the side it was on.
   static int side_at_start(const StepContext& ctx, int axis, std::uint32_t from, std::uint32_t c) {
-    const double d = ctx.bodies.start_pos(axis, c) - ctx.bodies.start_pos(axis, from);
+    // Both dynamic here (walls and what they push): their start positions are stored.
+    const Point& a = ctx.bodies.start[from];
+    const Point& b = ctx.bodies.start[c];
+    const double d = axis == 0 ? b.x - a.x : b.y - a.y;
     if (std::abs(d) <= ctx.def.touch_tolerance) return away(ctx, axis, from, c);
     return d > 0.0 ? 1 : -1;
   }

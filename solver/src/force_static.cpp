@@ -14,7 +14,7 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
   for (std::size_t k = 0; k < queue_.size() && !state.cut; ++k) {
     const Item item = queue_[k];
     const std::uint32_t w = item.body;
-    if (state.crushed(w)) continue;  // placed with its crushed row: nothing more to push
+    if (rows_ && state.crushed(w)) continue;  // placed with its crushed row: nothing to push
     const int axis = item.axis;
     auto p = [&](std::uint32_t i) { return ctx.bodies.pos(axis, i); };
     auto h = [&](std::uint32_t i) { return ctx.bodies.half(axis, i); };
@@ -37,6 +37,8 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
         state.flag(w, c);  // they meet across the chaining axis: the next sweep takes it
         continue;
       }
+      // The side c started the step on: a wall lands where its own wall puts it, which may be on
+      // or past c's middle, and c is still pushed on the side it was on.
       const int dir = ChainState::side_at_start(ctx, axis, w, c);
       if (dir == item.backing) {
         // c lies between the wall and the wall's own support. If c rests on that side too, the
@@ -58,42 +60,9 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
         continue;
       }
       if (state.supported_towards(axis, c, dir)) {
-        // Supported beyond the wall while the wall is supported behind: a squeeze. The row from
-        // the wall's anchor through w, and on through c to c's, takes it together.
-        // A body between w and c as the step began, placed against w already or still to be
-        // placed by this loop, is the end of this side's row: the squeeze is found again from it.
-        bool nearer = false;
-        for (const std::uint32_t e : cands_) {
-          if (e == c || ctx.bodies.immovable(e) || state.crushed(e)) continue;
-          const bool placed_here = state.walled(e, axis) && against_[e] == w;
-          nearer = nearer || ((placed_here || !state.visited(e)) &&
-                              ChainState::side_at_start(ctx, axis, w, e) == dir &&
-                              ChainState::side_at_start(ctx, axis, e, c) == dir);
-        }
-        if (nearer) continue;
-        // The row goes on through the body of the other side nearest to w when the step began
-        // (w may overlap several of them).
-        std::uint32_t next = c;
-        for (const std::uint32_t d : cands_) {
-          if (d == w || ctx.bodies.immovable(d) || !state.walled(d, axis) ||
-              !state.supported_towards(axis, d, dir) ||
-              ChainState::side_at_start(ctx, axis, w, d) != dir) {
-            continue;
-          }
-          if (std::abs(ctx.bodies.start_pos(axis, d) - ctx.bodies.start_pos(axis, w)) <
-              std::abs(ctx.bodies.start_pos(axis, next) - ctx.bodies.start_pos(axis, w))) {
-            next = d;
-          }
-        }
-        row_.clear();
-        const std::uint32_t anchor = walls_back(ctx, state, w, axis, row_);
-        std::reverse(row_.begin(), row_.end());
-        const std::uint32_t blocker = walls_back(ctx, state, next, axis, row_);
-        if (anchor == kNoSlot || blocker == kNoSlot ||
-            !squeeze_row(ctx, state, anchor, blocker, axis)) {
-          state.report_crush(ctx, w, item.anchor, state.support_anchor(c), axis);
-        }
-        break;
+        // Supported beyond the wall while the wall is supported behind: a squeeze.
+        if (squeeze(ctx, state, item, c, dir)) break;
+        continue;
       }
       if (!state.spend(ctx)) break;
       // A wall the chain placed already, met by another wall of the chain on that wall's free
@@ -163,12 +132,53 @@ void ForceStatic::begin_step(std::size_t bodies) {
   if (squeezed_.size() != bodies) squeezed_.assign(bodies, 0);
   if (++step_ == 0xffffffffu) forget_slots();
   squeezes_ = squeezes_ > 0 ? squeezes_ - 1 : 0;  // counts down from 2: this step and the next
+  rows_ = 0;
 }
 
 void ForceStatic::forget_slots() {
   std::fill(squeezed_.begin(), squeezed_.end(), 0u);
   step_ = 1;
   squeezes_ = 0;
+}
+
+// Kept out of run(): its loop runs for every wall of every step, a squeeze seldom.
+[[gnu::noinline]] bool ForceStatic::squeeze(StepContext& ctx, ChainState& state, const Item& item,
+                                            std::uint32_t c, int dir) {
+  const std::uint32_t w = item.body;
+  const int axis = item.axis;
+  // The row from the wall's anchor through w, and on through c to c's, takes it together. A body
+  // between w and c as the step began, placed against w already or still to be placed by run()'s
+  // loop, is the end of this side's row: the squeeze is found again from it.
+  for (const std::uint32_t e : cands_) {
+    if (e == c || ctx.bodies.immovable(e) || state.crushed(e)) continue;
+    const bool placed_here = state.walled(e, axis) && against_[e] == w;
+    if ((placed_here || !state.visited(e)) && ChainState::side_at_start(ctx, axis, w, e) == dir &&
+        ChainState::side_at_start(ctx, axis, e, c) == dir) {
+      return false;
+    }
+  }
+  // The row goes on through the body of the other side nearest to w when the step began (w may
+  // overlap several of them).
+  std::uint32_t next = c;
+  for (const std::uint32_t d : cands_) {
+    if (d == w || ctx.bodies.immovable(d) || !state.walled(d, axis) ||
+        !state.supported_towards(axis, d, dir) ||
+        ChainState::side_at_start(ctx, axis, w, d) != dir) {
+      continue;
+    }
+    if (std::abs(ctx.bodies.start_pos(axis, d) - ctx.bodies.start_pos(axis, w)) <
+        std::abs(ctx.bodies.start_pos(axis, next) - ctx.bodies.start_pos(axis, w))) {
+      next = d;
+    }
+  }
+  row_.clear();
+  const std::uint32_t anchor = walls_back(ctx, state, w, axis, row_);
+  std::reverse(row_.begin(), row_.end());
+  const std::uint32_t blocker = walls_back(ctx, state, next, axis, row_);
+  if (anchor == kNoSlot || blocker == kNoSlot || !squeeze_row(ctx, state, anchor, blocker, axis)) {
+    state.report_crush(ctx, w, item.anchor, state.support_anchor(c), axis);
+  }
+  return true;
 }
 
 std::uint32_t ForceStatic::walls_back(const StepContext& ctx, const ChainState& state,
@@ -221,6 +231,7 @@ bool ForceStatic::squeeze_row(StepContext& ctx, ChainState& state, std::uint32_t
   }
   ctx.note_push(row_.back(), blocker, axis, -side);  // held by the blocker too (velocity rule)
   if (row_.size() > 1) squeezes_ = 2;
+  ++rows_;
   return true;
 }
 

@@ -63,6 +63,10 @@ class ForceStatic {
   // when a body beyond w stopped it short.
   bool yield(StepContext& ctx, ChainState& state, std::uint32_t w, std::uint32_t c, int axis);
 
+  // Wall item.body meets c, on its free side (dir) and supported from beyond: a squeeze. Squeezes
+  // the row through them (or, when it cannot be traced, reports item.body crushed) and returns
+  // true; false when a body between them ends this side's row, to be met from there.
+  bool squeeze(StepContext& ctx, ChainState& state, const Item& item, std::uint32_t c, int dir);
   // Collects into `out` the walls of this chain from `from` back along axis, each to the one it
   // was placed against, and returns the immovable body they lead to (kNoSlot if they do not).
   std::uint32_t walls_back(const StepContext& ctx, const ChainState& state, std::uint32_t from,
@@ -87,6 +91,7 @@ class ForceStatic {
   std::vector<std::uint32_t> squeezed_;  // per slot: the last step it was in a squeezed row
   std::uint32_t step_ = 1;
   std::uint32_t squeezes_ = 0;  // rows squeezed this step and the last
+  std::uint32_t rows_ = 0;      // rows squeezed this step
   std::vector<std::uint32_t> row_;
 };
 

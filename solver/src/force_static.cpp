@@ -4,6 +4,20 @@
 #include <cmath>
 
 namespace chain::detail {
+namespace {
+
+// The walls of the current chain along an axis, for StepContext::place.
+struct WallsOf {
+  const ChainState* state;
+  int axis;
+  static bool passes(const void* arg, std::uint32_t c) {
+    const auto* w = static_cast<const WallsOf*>(arg);
+    return w->state->walled(c, w->axis);
+  }
+};
+
+}  // namespace
+
 void ForceStatic::run(StepContext& ctx, ChainState& state) {
   const double tol = ctx.def.touch_tolerance;
   if (against_.size() < ctx.bodies.size()) against_.resize(ctx.bodies.size());
@@ -71,11 +85,20 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
       ctx.note_push(c, w, axis, dir);
       // Placed against w rather than moved by the depth: resting stacks rebuild the same
       // positions every step instead of accumulating rounding.
-      // Unguarded (StepContext::move): c may land on or past the middle of the next body of the
-      // chain, which is pushed on the side it started on all the same (side_at_start), so the
-      // chain keeps its order; and where two walls of the chain meet, the squeeze is found.
-      ctx.place(c, axis, p(w) + dir * (h(c) + h(w) - kept_squeeze(ctx, c, w, axis)), kNoSlot,
-                false);
+      // Guarded (StepContext::move) against every body but the walls of this chain: c may land
+      // on or past the middle of another wall of it, which is pushed on the side it started on
+      // all the same (side_at_start), and where two walls of the chain meet the squeeze is found;
+      // but it never jumps past a body the chain has not placed.
+      const double flush = p(w) + dir * (h(c) + h(w) - kept_squeeze(ctx, c, w, axis));
+      const WallsOf walls{&state, axis};
+      ctx.place(c, axis, flush, kNoSlot, true, &WallsOf::passes, &walls);
+      if (p(c) != flush) {
+        // Stopped short: not flush, so not a wall this chain can build on; the next sweep
+        // resolves what is left.
+        state.visit(c);
+        state.flag(w, c);
+        continue;
+      }
       state.wall(c, axis);
       against_[c] = w;
       state.support(axis, c, -dir, item.anchor);

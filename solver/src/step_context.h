@@ -49,7 +49,7 @@ struct StepContext {
   // Under the zero rule, a velocity component that points against the move stops, as the 2014
   // engine's updateTransform did.
   double move(std::uint32_t i, int axis, double d, std::uint32_t follower = kNoSlot) {
-    if (guarded(d)) d = limit_move(i, axis, d, follower);
+    if (guarded(d)) d = limit_move(i, axis, d, follower, nullptr, nullptr);
     bodies.pos(axis, i) += d;
     broadphase.note_move(i, bodies.x(i), bodies.y(i));
     if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
@@ -58,11 +58,14 @@ struct StepContext {
 
   // Puts body i at `target` along axis, or short of it when guarded (and `guard`); returns how far
   // it moved.
+  // Bodies for which passes(arg, c) is true do not stop a guarded move (a chain's own walls).
+  using Passes = bool (*)(const void* arg, std::uint32_t c);
+
   double place(std::uint32_t i, int axis, double target, std::uint32_t follower = kNoSlot,
-               bool guard = true) {
+               bool guard = true, Passes passes = nullptr, const void* arg = nullptr) {
     double d = target - bodies.pos(axis, i);
     if (guard && guarded(d) &&
-        (d = limit_move(i, axis, d, follower)) != target - bodies.pos(axis, i)) {
+        (d = limit_move(i, axis, d, follower, passes, arg)) != target - bodies.pos(axis, i)) {
       bodies.pos(axis, i) += d;
     } else {
       bodies.pos(axis, i) = target;  // exactly: resting stacks rebuild the same positions
@@ -94,7 +97,8 @@ struct StepContext {
   // through the face it came in by at any depth (entry_face.h). `follower` (if any) is about to
   // move after i by as much (a chain's follow-back) and does not stop it. Returns the move
   // allowed, of d's sign and at most |d|.
-  double limit_move(std::uint32_t i, int axis, double d, std::uint32_t follower) const;
+  double limit_move(std::uint32_t i, int axis, double d, std::uint32_t follower, Passes passes,
+                    const void* arg) const;
 
  private:
   // Moves shorter than this cannot take a body past a centre it is kept clear of by the guard:

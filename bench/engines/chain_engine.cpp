@@ -142,9 +142,10 @@ EngineDef register_chain() {
   // The modern solver is the one under test: stress fails where it is not right.
   e.gate = "chain";
   const char* through =
-      "a body pushed out of a pile created twice as dense as it can be is moved by many pushes "
-      "in one step (metres, around other boxes); each push is kept short of any centre, but "
-      "judged as one straight move from where it started the step, its path crosses a third box";
+      "created twice as dense as it can hold, the pile's first steps move boxes metres by series "
+      "of pushes; each push stops short of other boxes' centres (its own chain's walls excepted, "
+      "so squeezes are found), but the step's net motion, judged as one straight move, can cross "
+      "a third box";
   e.known_failures = {{"overlapping_pile n=1000", "tunnelled", through},
                       {"overlapping_pile n=200", "tunnelled", through}};
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {

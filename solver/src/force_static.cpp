@@ -116,7 +116,8 @@ bool ForceStatic::yield(StepContext& ctx, ChainState& state, std::uint32_t w, st
   auto h = [&](std::uint32_t i) { return ctx.bodies.half(axis, i); };
   ctx.note_push(w, c, axis, -c_side);
   const double target = p(c) - c_side * (h(w) + h(c));
-  ctx.place(w, axis, target, kNoSlot, false);
+  const WallsOf walls{&state, axis};  // guarded as a placement is (run())
+  ctx.place(w, axis, target, kNoSlot, true, &WallsOf::passes, &walls);
   state.flag(w);  // bodies this wall already pushed may now overlap it again
   return p(w) == target;
 }

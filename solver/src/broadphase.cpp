@@ -31,7 +31,17 @@ void Broadphase::configure(const Bodies& bodies) {
   const std::uint32_t n = bodies.size();
   level_of_.assign(n, 0);
   entry_of_.assign(n, 0);
-  built_at_.resize(n);
+  ref_.resize(n);
+  spare_.resize(n);
+  in_overlay_.assign(n, 0);
+  overlay_cx_.assign(n, 0);
+  overlay_cy_.assign(n, 0);
+  next_.assign(n, kNoSlot);
+  prev_.assign(n, kNoSlot);
+  epoch_of_.assign(n, 0);
+  members_.clear();
+  members_.reserve(n);
+  stale_ = 0;
   levels_.clear();
 
   std::vector<std::uint32_t> by_size(n);
@@ -63,6 +73,11 @@ void Broadphase::configure(const Bodies& bodies) {
     start = end;
   }
   slack_ = levels_.empty() ? 0.0 : 0.25 * levels_.front().small_half;
+  refile_ = 0.25 * slack_;
+  double smallest = std::numeric_limits<double>::infinity();
+  for (std::uint32_t i = 0; i < n; ++i)
+    smallest = std::min({smallest, bodies.hx(i), bodies.hy(i)});
+  free_move_ = n == 0 ? 0.0 : 0.1 * smallest;
   for (Level& level : levels_) {
     level.cell = std::max(2.0 * level.small_half + slack_, kMinCell);
     level.inv_cell = 1.0 / level.cell;
@@ -75,11 +90,18 @@ void Broadphase::configure(const Bodies& bodies) {
     level.key_x.resize(count);
     level.key_y.resize(count);
     level.entries.resize(count);
+    level.overlay_head.assign(table, kNoSlot);
   }
 }
 
 void Broadphase::renumber(std::span<const std::uint32_t> order) {
   ++generation_;
+  // Until the next build() only note_move() runs: it needs each body's filed place under its new
+  // slot. The overlay is emptied; the next build() files everything anew.
+  clear_overlay();
+  for (std::uint32_t slot = 0; slot < order.size(); ++slot)
+    spare_[slot] = ref_[order[slot]];
+  ref_.swap(spare_);
   // Slot order within each level, as configure() leaves it; the lists keep their capacity.
   for (Level& level : levels_)
     level.bodies.clear();
@@ -92,12 +114,58 @@ void Broadphase::renumber(std::span<const std::uint32_t> order) {
 }
 
 void Broadphase::build(const Bodies& bodies) {
+  built_generation_ = generation_;
   margin_ = 0.0;
+  clear_overlay();
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
-    built_at_[i] = {bodies.x(i), bodies.y(i)};
+    ref_[i] = {bodies.x(i), bodies.y(i)};
   }
   for (Level& level : levels_)
     level.build(bodies, entry_of_);
+}
+
+void Broadphase::clear_overlay() {
+  for (const std::uint32_t i : members_) {
+    if (!in_overlay_[i]) continue;
+    Level& level = levels_[level_of_[i]];
+    level.overlay_head[level.overlay_bucket(overlay_cx_[i], overlay_cy_[i])] = kNoSlot;
+    in_overlay_[i] = 0;
+  }
+  members_.clear();
+  stale_ = 0;
+}
+
+void Broadphase::unlink(std::uint32_t body) {
+  Level& level = levels_[level_of_[body]];
+  const std::uint32_t p = prev_[body], n = next_[body];
+  if (p != kNoSlot) {
+    next_[p] = n;
+  } else {
+    level.overlay_head[level.overlay_bucket(overlay_cx_[body], overlay_cy_[body])] = n;
+  }
+  if (n != kNoSlot) prev_[n] = p;
+}
+
+void Broadphase::refile(std::uint32_t body, double x, double y) {
+  Level& level = levels_[level_of_[body]];
+  if (in_overlay_[body]) {
+    unlink(body);
+  } else {
+    in_overlay_[body] = 1;
+    members_.push_back(body);
+    level.entries[entry_of_[body]].out = 1;
+  }
+  if (epoch_of_[body] <= scan_) ++stale_;
+  epoch_of_[body] = scan_ + 1;
+  const std::int32_t cx = level.overlay_x(x), cy = level.overlay_y(y);
+  overlay_cx_[body] = cx;
+  overlay_cy_[body] = cy;
+  std::uint32_t& head = level.overlay_head[level.overlay_bucket(cx, cy)];
+  prev_[body] = kNoSlot;
+  next_[body] = head;
+  if (head != kNoSlot) prev_[head] = body;
+  head = body;
+  ref_[body] = {x, y};
 }
 
 void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry_of) {
@@ -132,8 +200,9 @@ void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     const std::uint32_t i = bodies[k];
     entry_of[i] = cursor[keys[k]]++;
-    entries[entry_of[i]] =
-        Entry{i, key_x[k], key_y[k], b.immovable(i) ? 1u : 0u, b.x(i), b.y(i), b.hx(i), b.hy(i)};
+    entries[entry_of[i]] = Entry{
+        i,      key_x[k], key_y[k], static_cast<std::uint8_t>(b.immovable(i) ? 1 : 0), 0, b.x(i),
+        b.y(i), b.hx(i),  b.hy(i)};
   }
 }
 

@@ -10,10 +10,15 @@
 // cell and a 3-cell row of a query is one contiguous run of entries; otherwise rows wrap around
 // the table like a hash, and entries are filtered by cell.
 //
-// A body moved after build() stays in the bucket and entry it was built into: note_move() widens
-// later queries by the largest displacement so far, and queries test current positions from
-// the bodies, so a pair created by a push is never missed. Integration notes its moves too, so
-// telling whether the near pairs still hold needs no pass over the bodies.
+// A body moved after build() stays in the entry it was built into while it is within
+// refile_distance() (a quarter of the slack) of where it was filed; queries widen by the largest
+// such displacement, and test current positions from the bodies. A body that moves further (a
+// far push, a fast body) is filed again at its new place in the overlay: a hashed grid of the same
+// cells over unbounded cell coordinates, one linked list per bucket, which queries scan as well.
+// So no query ever widens by more than refile_distance(), however far any body went: one far push
+// no longer makes every later query scan a region as wide as that push (work per query stays
+// bounded by the bodies around the query, not by the largest move of the step). Integration
+// notes its moves too, so telling whether the near pairs still hold needs no pass over the bodies.
 #pragma once
 
 #include "bodies.h"
@@ -37,24 +42,44 @@ class Broadphase {
   void build(const Bodies& bodies);
   // Changes whenever the body set changes (configure()) or the slots are renumbered.
   std::uint64_t generation() const { return generation_; }
-  // Every move of a body after build() must be noted, integration included: queries and
-  // near_pairs_hold() go by the largest displacement since build().
+  // build() ran since the last configure() or renumber(): queries may be made (every move since
+  // having been noted).
+  bool built() const { return built_generation_ == generation_; }
+  // How many bodies were filed again since the near pairs were last scanned.
+  std::uint32_t stale_count() const { return stale_; }
+  // Every move of a body after build() must be noted, integration included. A body further than
+  // refile_distance() from where it was last filed is filed again where it is now.
   void note_move(std::uint32_t body, double x, double y) {
-    margin_ = std::max(margin_,
-                       std::max(std::abs(x - built_at_[body].x), std::abs(y - built_at_[body].y)));
+    const Point& r = ref_[body];
+    const double d = std::max(std::abs(x - r.x), std::abs(y - r.y));
+    margin_ = std::max(margin_, std::min(d, refile_));
+    if (d > refile_) [[unlikely]]
+      refile(body, x, y);
   }
-  // True while no body has moved a quarter of the slack since build(): every pair that can
-  // overlap now was a near pair then.
-  bool near_pairs_hold() const { return 4.0 * margin_ < slack_; }
+  // True while no body was filed again since the near pairs were last scanned: every pair that
+  // can overlap now is a near pair of that scan (each body has moved at most refile_distance(),
+  // a quarter of the slack, from where the scan saw it).
+  bool near_pairs_hold() const { return stale_ == 0; }
+  // Body was filed again since the near pairs were last scanned: its near pairs are out of date,
+  // and the other bodies' near pairs may miss it.
+  bool stale(std::uint32_t body) const { return in_overlay_[body] && epoch_of_[body] > scan_; }
   // Pairs closer than this are near pairs.
   double slack() const { return slack_; }
-  // The largest displacement of any body from where build() saw it, at any move since.
-  double moved() const { return margin_; }
+  // How far a body may move from where it was filed before it is filed again: a quarter of the
+  // slack, so that two bodies that both stayed within it closed by less than the slack.
+  double refile_distance() const { return refile_; }
+  // A tenth of the smallest half extent of any body: a move shorter than this cannot take a body
+  // from kPushOutShare (step_context.h) of the way to another's centre past it.
+  double free_move() const { return free_move_; }
+  // Candidate bodies examined by queries and pair scans since configure(): the broadphase's work.
+  std::uint64_t examined() const { return examined_; }
 
   // fn(i, j) with i < j, once for every pair whose boxes are less than slack() apart on both
-  // axes at build time, except pairs of two immovable bodies. Call right after build().
+  // axes where the grid and the overlay have them filed, except pairs of two immovable bodies.
+  // Call right after build(), or later: bodies in the overlay are filed again where they are now,
+  // first. Afterwards no body is stale.
   template <class Fn>
-  void for_each_near_pair(Fn&& fn) const;
+  void for_each_near_pair(const Bodies& bodies, Fn&& fn);
 
   // fn(j) once for every body j != body whose box now overlaps body's box by more than
   // `tolerance` on both axes. Order depends only on positions and solve order.
@@ -67,6 +92,12 @@ class Broadphase {
   void for_each_in_box(const Bodies& bodies, double x, double y, double hx, double hy, double slack,
                        Fn&& fn) const;
 
+  // fn(j) once for every stale body j != body whose box now overlaps body's box by more than
+  // `tolerance` on both axes: with body's near pairs, every body it overlaps.
+  template <class Fn>
+  void for_each_stale_overlap(const Bodies& bodies, std::uint32_t body, double tolerance,
+                              Fn&& fn) const;
+
   // fn(j) for the bodies near `body` as the grid saw them at build time, ignoring every move
   // since: the 2014 engine's grid, built once per frame and never updated.
   template <class Fn>
@@ -78,7 +109,8 @@ class Broadphase {
   struct Entry {  // a body: the cell it was built into, and its box then
     std::uint32_t body;
     std::int32_t cx, cy;
-    std::uint32_t immovable;
+    std::uint8_t immovable;
+    std::uint8_t out;  // the body is filed in the overlay now: this entry no longer counts
     double x, y, hx, hy;
   };
   struct CellRange {
@@ -96,7 +128,23 @@ class Broadphase {
     std::vector<std::uint32_t> bodies;  // slots, in solve order
     std::vector<std::uint32_t> cell_start, cursor, keys;
     std::vector<std::int32_t> key_x, key_y;
-    std::vector<Entry> entries;  // grouped by bucket, solve order within a bucket
+    std::vector<Entry> entries;               // grouped by bucket, solve order within a bucket
+    std::vector<std::uint32_t> overlay_head;  // per bucket: first overlay body, or kNoSlot
+
+    // Overlay cells: the same cells, unbounded (a far push may leave the built bounding box).
+    static std::int32_t unbounded(double c) {
+      constexpr double kLimit = 1 << 30;
+      if (!(c > -kLimit)) return -(1 << 30);
+      if (c >= kLimit) return 1 << 30;
+      return static_cast<std::int32_t>(std::floor(c));
+    }
+    std::int32_t overlay_x(double x) const { return unbounded((x - origin_x) * inv_cell); }
+    std::int32_t overlay_y(double y) const { return unbounded((y - origin_y) * inv_cell); }
+    std::uint32_t overlay_bucket(std::int32_t cx, std::int32_t cy) const {
+      return (static_cast<std::uint32_t>(cx) * 0x9e3779b1u ^
+              static_cast<std::uint32_t>(cy) * 0x85ebca77u) &
+             mask;
+    }
 
     std::int32_t cell_x(double x) const { return clamp_cell((x - origin_x) * inv_cell, width); }
     std::int32_t cell_y(double y) const { return clamp_cell((y - origin_y) * inv_cell, height); }
@@ -110,7 +158,7 @@ class Broadphase {
     }
     void build(const Bodies& bodies, std::vector<std::uint32_t>& entry_of);
     template <class Fn>
-    void scan(CellRange r, Fn&& fn) const;
+    void scan(CellRange r, std::uint64_t& examined, Fn&& fn) const;
   };
 
   static std::int32_t clamp_cell(double c, std::uint32_t count) {
@@ -122,22 +170,53 @@ class Broadphase {
     return (hx + e.hx) - std::abs(x - e.x) > gap && (hy + e.hy) - std::abs(y - e.y) > gap;
   }
 
+  // Files body in the overlay at (x, y) (moving it there if it is in already).
+  void refile(std::uint32_t body, double x, double y);
+  void clear_overlay();
+  void unlink(std::uint32_t body);
+  // fn(j) for every overlay body of level l filed in a cell the box (x +- rx, y +- ry) reaches.
+  template <class Fn>
+  void scan_overlay(std::size_t l, double x, double y, double rx, double ry, Fn&& fn) const;
+  // Both the grid and the overlay: fn(j) for every body that may come within `pad` of the box.
+  template <class Fn>
+  void scan_all(double x, double y, double hx, double hy, double pad, Fn&& fn) const;
+
   std::vector<Level> levels_;
   std::vector<std::uint8_t> level_of_;   // per slot
   std::vector<std::uint32_t> entry_of_;  // per slot: index in its level's entries
-  struct Point {
-    double x, y;
-  };
-  // Per slot, where build() saw the body: x and y together, as every note_move() reads both.
-  std::vector<Point> built_at_;
-  double margin_ = 0.0;
+  // Per slot, where the body was last filed (by build() or in the overlay): x and y together, as
+  // every note_move() reads both.
+  std::vector<Point> ref_;
+  std::vector<Point> spare_;  // renumber()'s buffer
+  // The overlay, per slot: in it or not, its cell there, its bucket list's links, and the scan
+  // after which it was last filed (stale when later than scan_).
+  std::vector<std::uint8_t> in_overlay_;
+  std::vector<std::int32_t> overlay_cx_, overlay_cy_;
+  std::vector<std::uint32_t> next_, prev_;
+  std::vector<std::uint64_t> epoch_of_;
+  std::vector<std::uint32_t> members_;  // overlay bodies, in the order they entered it
+  std::uint64_t scan_ = 0;              // near-pair scans so far
+  std::uint32_t stale_ = 0;             // bodies filed again since the last scan
+  double margin_ = 0.0;                 // largest displacement from where a body is filed
   double slack_ = 0.0;
+  double refile_ = 0.0;
+  double free_move_ = 0.0;
   std::uint64_t generation_ = 0;
+  std::uint64_t built_generation_ = ~std::uint64_t{0};
+  mutable std::uint64_t examined_ = 0;
 };
 
 template <class Fn>
-void Broadphase::Level::scan(CellRange r, Fn&& fn) const {
+void Broadphase::Level::scan(CellRange r, std::uint64_t& examined_total, Fn&& fn) const {
+  // Counted locally: the total is a member that fn may be assumed to change.
+  std::uint64_t examined = 0;
+  struct Add {
+    std::uint64_t& to;
+    const std::uint64_t& count;
+    ~Add() { to += count; }
+  } add{examined_total, examined};
   if (static_cast<std::int64_t>(r.x1 - r.x0 + 1) * (r.y1 - r.y0 + 1) > kMaxScanCells) {
+    examined += entries.size();
     for (const Entry& e : entries) {
       if (e.cx >= r.x0 && e.cx <= r.x1 && e.cy >= r.y0 && e.cy <= r.y1) fn(e);
     }
@@ -150,6 +229,7 @@ void Broadphase::Level::scan(CellRange r, Fn&& fn) const {
       // The row's buckets are contiguous: one run of entries, which in a dense level holds
       // exactly the cells asked for.
       const std::uint32_t begin = cell_start[b0], end = cell_start[b1 + 1];
+      examined += end - begin;
       if (dense) {
         for (std::uint32_t k = begin; k < end; ++k)
           fn(entries[k]);
@@ -163,6 +243,7 @@ void Broadphase::Level::scan(CellRange r, Fn&& fn) const {
     }
     for (std::int32_t cx = r.x0; cx <= r.x1; ++cx) {
       const std::uint32_t b = bucket(cx, cy);
+      examined += cell_start[b + 1] - cell_start[b];
       for (std::uint32_t k = cell_start[b], end = cell_start[b + 1]; k < end; ++k) {
         const Entry& e = entries[k];
         if (e.cx == cx && e.cy == cy) fn(e);
@@ -172,10 +253,58 @@ void Broadphase::Level::scan(CellRange r, Fn&& fn) const {
 }
 
 template <class Fn>
-void Broadphase::for_each_near_pair(Fn&& fn) const {
+void Broadphase::scan_overlay(std::size_t l, double x, double y, double rx, double ry,
+                              Fn&& fn) const {
+  const Level& level = levels_[l];
+  const std::int32_t x0 = level.overlay_x(x - rx), x1 = level.overlay_x(x + rx);
+  const std::int32_t y0 = level.overlay_y(y - ry), y1 = level.overlay_y(y + ry);
+  if ((static_cast<std::int64_t>(x1) - x0 + 1) * (static_cast<std::int64_t>(y1) - y0 + 1) >
+      kMaxScanCells) {
+    examined_ += members_.size();
+    for (const std::uint32_t i : members_) {
+      if (in_overlay_[i] && level_of_[i] == l && overlay_cx_[i] >= x0 && overlay_cx_[i] <= x1 &&
+          overlay_cy_[i] >= y0 && overlay_cy_[i] <= y1) {
+        fn(i);
+      }
+    }
+    return;
+  }
+  for (std::int32_t cy = y0; cy <= y1; ++cy) {
+    for (std::int32_t cx = x0; cx <= x1; ++cx) {
+      for (std::uint32_t i = level.overlay_head[level.overlay_bucket(cx, cy)]; i != kNoSlot;
+           i = next_[i]) {
+        ++examined_;
+        if (overlay_cx_[i] == cx && overlay_cy_[i] == cy) fn(i);
+      }
+    }
+  }
+}
+
+template <class Fn>
+void Broadphase::scan_all(double x, double y, double hx, double hy, double pad, Fn&& fn) const {
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    const Level& level = levels_[l];
+    level.scan(level.cells_near(x, y, hx, hy, pad), examined_, [&](const Entry& e) {
+      if (!e.out) fn(e.body);
+    });
+    if (!members_.empty()) {
+      scan_overlay(l, x, y, hx + level.small_half + pad, hy + level.small_half + pad, fn);
+    }
+  }
+}
+
+template <class Fn>
+void Broadphase::for_each_near_pair(const Bodies& bodies, Fn&& fn) {
+  // Overlay bodies are filed where they are now: their near pairs are found from there.
+  for (const std::uint32_t i : members_) {
+    refile(i, bodies.x(i), bodies.y(i));
+    epoch_of_[i] = scan_ + 1;
+  }
+  ++scan_;
+  stale_ = 0;
   const double gap = -slack_;
   auto test = [&](const Entry& e, const Entry& f) {
-    if (!(e.immovable & f.immovable) && within(e.x, e.y, e.hx, e.hy, f, gap)) {
+    if (!((e.immovable & f.immovable) | e.out | f.out) && within(e.x, e.y, e.hx, e.hy, f, gap)) {
       fn(std::min(e.body, f.body), std::max(e.body, f.body));
     }
   };
@@ -186,9 +315,10 @@ void Broadphase::for_each_near_pair(Fn&& fn) const {
     // Within the level, half the neighbourhood: the own row (each pair once, by slot) and the
     // row above; the row below finds e when it is that row's turn.
     for (const Entry& e : level.entries) {
+      if (e.out) continue;
       const CellRange r{std::max(e.cx - 1, 0), e.cy, std::min(e.cx + 1, last_x),
                         std::min(e.cy + 1, last_y)};
-      level.scan(r, [&](const Entry& f) {
+      level.scan(r, examined_, [&](const Entry& f) {
         if (f.cy != e.cy || f.body > e.body) test(e, f);
       });
     }
@@ -198,15 +328,36 @@ void Broadphase::for_each_near_pair(Fn&& fn) const {
       const Level& coarse = levels_[m];
       if (coarse.entries.size() < level.entries.size()) {
         for (const Entry& c : coarse.entries) {
-          level.scan(level.cells_near(c.x, c.y, c.hx, c.hy, slack_),
+          level.scan(level.cells_near(c.x, c.y, c.hx, c.hy, slack_), examined_,
                      [&](const Entry& f) { test(c, f); });
         }
       } else {
         for (const Entry& e : level.entries) {
-          coarse.scan(coarse.cells_near(e.x, e.y, e.hx, e.hy, slack_),
+          coarse.scan(coarse.cells_near(e.x, e.y, e.hx, e.hy, slack_), examined_,
                       [&](const Entry& f) { test(e, f); });
         }
       }
+    }
+  }
+  // Each overlay body against the grid's bodies and the overlay bodies after it.
+  for (const std::uint32_t i : members_) {
+    const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
+    const bool fixed = bodies.immovable(i);
+    for (std::size_t l = 0; l < levels_.size(); ++l) {
+      const Level& level = levels_[l];
+      level.scan(level.cells_near(x, y, hx, hy, slack_), examined_, [&](const Entry& f) {
+        if (!f.out && !(fixed && f.immovable) && within(x, y, hx, hy, f, gap)) {
+          fn(std::min(i, f.body), std::max(i, f.body));
+        }
+      });
+      const double rx = hx + level.small_half + slack_, ry = hy + level.small_half + slack_;
+      scan_overlay(l, x, y, rx, ry, [&](std::uint32_t j) {
+        if (j <= i || (fixed && bodies.immovable(j))) return;
+        if ((hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > gap &&
+            (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > gap) {
+          fn(i, j);
+        }
+      });
     }
   }
 }
@@ -215,10 +366,24 @@ template <class Fn>
 void Broadphase::for_each_overlap(const Bodies& bodies, std::uint32_t body, double tolerance,
                                   Fn&& fn) const {
   const double x = bodies.x(body), y = bodies.y(body), hx = bodies.hx(body), hy = bodies.hy(body);
-  for (const Level& level : levels_) {
-    level.scan(level.cells_near(x, y, hx, hy, margin_), [&](const Entry& e) {
-      const std::uint32_t j = e.body;
-      if (j != body && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tolerance &&
+  scan_all(x, y, hx, hy, margin_, [&](std::uint32_t j) {
+    if (j != body && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tolerance &&
+        (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tolerance) {
+      fn(j);
+    }
+  });
+}
+
+template <class Fn>
+void Broadphase::for_each_stale_overlap(const Bodies& bodies, std::uint32_t body, double tolerance,
+                                        Fn&& fn) const {
+  const double x = bodies.x(body), y = bodies.y(body), hx = bodies.hx(body), hy = bodies.hy(body);
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    const Level& level = levels_[l];
+    const double rx = hx + level.small_half + margin_, ry = hy + level.small_half + margin_;
+    scan_overlay(l, x, y, rx, ry, [&](std::uint32_t j) {
+      if (j != body && epoch_of_[j] > scan_ &&
+          (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tolerance &&
           (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tolerance) {
         fn(j);
       }
@@ -229,23 +394,21 @@ void Broadphase::for_each_overlap(const Bodies& bodies, std::uint32_t body, doub
 template <class Fn>
 void Broadphase::for_each_in_box(const Bodies& bodies, double x, double y, double hx, double hy,
                                  double slack, Fn&& fn) const {
-  for (const Level& level : levels_) {
-    level.scan(level.cells_near(x, y, hx, hy, margin_ + slack), [&](const Entry& e) {
-      const std::uint32_t j = e.body;
-      if ((hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) >= -slack &&
-          (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) >= -slack) {
-        fn(j);
-      }
-    });
-  }
+  scan_all(x, y, hx, hy, margin_ + slack, [&](std::uint32_t j) {
+    if ((hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) >= -slack &&
+        (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) >= -slack) {
+      fn(j);
+    }
+  });
 }
 
 template <class Fn>
 void Broadphase::for_each_stale_candidate(const Bodies& bodies, std::uint32_t body, Fn&& fn) const {
-  const double x = built_at_[body].x, y = built_at_[body].y, hx = bodies.hx(body),
-               hy = bodies.hy(body);
+  const Entry& own = levels_[level_of_[body]].entries[entry_of_[body]];
+  const double hx = bodies.hx(body), hy = bodies.hy(body);
   for (const Level& level : levels_) {
-    level.scan(level.cells_near(x, y, hx, hy, 0.0), [&](const Entry& e) { fn(e.body); });
+    level.scan(level.cells_near(own.x, own.y, hx, hy, 0.0), examined_,
+               [&](const Entry& e) { fn(e.body); });
   }
 }
 

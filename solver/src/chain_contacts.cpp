@@ -16,35 +16,58 @@ constexpr std::uint32_t kUnreached = 0xffffffffu;
 }  // namespace
 
 // A grid scan gives the near pairs (closer than the slack), which chains look through instead of
-// the grid while bodies have moved less than half the slack. While no body has moved a quarter
-// of the slack since that scan, they still hold every pair that can overlap, and no new scan is
-// needed: the contacts (overlapping pairs) are always found among them.
+// the grid. Every pair of bodies that both stayed within the broadphase's refile distance (a
+// quarter of the slack) of where the scan saw them is among them; a body that moved further (a
+// fast body, a far push) was filed again and is looked up in the broadphase itself. So the near
+// pairs serve from step to step, however far a few bodies went, and are scanned again only when
+// the grid changes or a good share of the bodies were filed again: a resting pile with one fast
+// body in it neither rebuilds its grid nor rescans its pairs.
 void ChainResolver::gather_contacts(StepContext& ctx) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
-  const bool hold = ctx.broadphase.near_pairs_hold();
-  if (!fresh_grid_ && near_generation_ == ctx.broadphase.generation() && hold) {
+  const Broadphase& bp = ctx.broadphase;
+  if (!fresh_grid_ && near_generation_ == bp.generation() &&
+      bp.stale_count() <= bodies.size() / kRescanShare) {
     state_.begin_sweep(bodies, nullptr);
   } else {
-    // The sweep's build serves while its own moves keep within the slack.
-    if (!fresh_grid_ || !hold) ctx.broadphase.build(bodies);
+    if (!fresh_grid_) ctx.broadphase.build(bodies);
     fresh_grid_ = false;
-    near_generation_ = ctx.broadphase.generation();
+    near_generation_ = bp.generation();
     near_pairs_.clear();
-    ctx.broadphase.for_each_near_pair([&](std::uint32_t i, std::uint32_t j) {
+    ctx.broadphase.for_each_near_pair(bodies, [&](std::uint32_t i, std::uint32_t j) {
       near_pairs_.push_back({i, j});
     });
     state_.begin_sweep(bodies, &near_pairs_);
   }
   // Walked body by body in solve order, each pair taken at its later body: the earlier one was
   // just read and is still in cache, and the contacts come out in an order that depends on the
-  // bodies alone.
+  // bodies alone. A body filed again since the scan takes its pairs from the broadphase, all at
+  // its own turn (those with another such body at the later one), and is skipped in near lists.
   contacts_.clear();
+  if (bp.near_pairs_hold()) {
+    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+      const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
+      for (const std::uint32_t j : state_.near(i)) {
+        if (j < i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
+            (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol) {
+          contacts_.push_back({j, i});
+        }
+      }
+    }
+    return;
+  }
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    if (bp.stale(i)) {
+      bp.for_each_overlap(bodies, i, tol, [&](std::uint32_t j) {
+        if ((j < i || !bp.stale(j)) && !(bodies.immovable(i) && bodies.immovable(j)))
+          contacts_.push_back({std::min(i, j), std::max(i, j)});
+      });
+      continue;
+    }
     const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
     for (const std::uint32_t j : state_.near(i)) {
       if (j < i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
-          (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol) {
+          (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol && !bp.stale(j)) {
         contacts_.push_back({j, i});
       }
     }
@@ -52,22 +75,23 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
 }
 
 // A later sweep can only find the overlaps the last one's chains left behind, and those flagged
-// the bodies involved: the contacts are among the near pairs of those bodies, while they hold.
+// the bodies involved: the contacts are among the overlaps of those bodies.
 void ChainResolver::gather_suspect_contacts(StepContext& ctx) {
   const Broadphase& bp = ctx.broadphase;
-  if (fresh_grid_ || near_generation_ != bp.generation() || !bp.near_pairs_hold()) {
+  if (fresh_grid_ || near_generation_ != bp.generation()) {
     near_generation_ = 0;  // forces a new scan
     gather_contacts(ctx);
     return;
   }
   const Bodies& bodies = ctx.bodies;
-  const double tol = ctx.def.touch_tolerance;
   contacts_.clear();
   for (const std::uint32_t i : state_.suspects()) {
-    for (const std::uint32_t j : state_.near(i)) {
+    found_.clear();
+    state_.gather_overlaps(ctx, i, found_);
+    for (const std::uint32_t j : found_) {
       if (state_.suspect(j) && j < i) continue;  // both flagged: the pair is taken once
-      const Overlap o = overlap(bodies, i, j);
-      if (o.x > tol && o.y > tol) contacts_.push_back({std::min(i, j), std::max(i, j)});
+      if (bodies.immovable(i) && bodies.immovable(j)) continue;
+      contacts_.push_back({std::min(i, j), std::max(i, j)});
     }
   }
   state_.begin_sweep(bodies, nullptr);

@@ -19,6 +19,7 @@ void ChainResolver::resolve(StepContext& ctx) {
         near_pairs_.reserve(4 * n);
   }
   state_.begin_step(ctx);
+  walls_.begin_step(bodies.size());
   fresh_grid_ = sweep_.run(ctx, state_);
   state_.leftover = true;
   for (int pass = 0; pass < ctx.def.max_passes && state_.leftover; ++pass) {
@@ -69,6 +70,7 @@ void ChainResolver::resolve(StepContext& ctx) {
 
 void ChainResolver::forget_slots() {
   state_.forget_slots();
+  walls_.forget_slots();
   std::fill(local_mark_.begin(), local_mark_.end(), 0u);
   mark_ = 0;
   near_generation_ = 0;
@@ -94,7 +96,7 @@ void ChainResolver::run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b
     if (f.stage == Stage::kBack) {  // a, pushed back, meets the bodies now in its way
       if (next_candidate(ctx, f, f.a, c)) {
         const bool w = bodies.immovable(c);
-        if (!open(ctx, f.a, c, f.extra + bodies.mass[f.b], f.chain_axis, w, w ? c : kNoSlot)) {
+        if (!open(ctx, f.a, c, f.extra + bodies.mass[f.b], f.chain_axis, w, w ? c : kNoSlot, f.b)) {
           walls_.run(ctx, state_);
           hand_back(ctx, last_);
         }
@@ -109,7 +111,7 @@ void ChainResolver::run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b
       }
     } else if (next_candidate(ctx, f, f.b, c)) {  // b carries the chain on, a's mass behind it
       const bool w = bodies.immovable(c);
-      if (!open(ctx, f.b, c, f.extra + bodies.mass[f.a], f.chain_axis, w, w ? c : kNoSlot)) {
+      if (!open(ctx, f.b, c, f.extra + bodies.mass[f.a], f.chain_axis, w, w ? c : kNoSlot, f.a)) {
         walls_.run(ctx, state_);
         hand_back(ctx, last_);
       }
@@ -121,7 +123,7 @@ void ChainResolver::run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b
 }
 
 bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, double extra, int axis,
-                         bool force_static, std::uint32_t anchor) {
+                         bool force_static, std::uint32_t anchor, std::uint32_t follower) {
   Frame& f = last_;
   f = Frame{};
   f.a = a;
@@ -163,7 +165,10 @@ bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, dou
   if (force_static) {
     // Placed against b rather than moved by the depth: resting stacks rebuild the same
     // positions every step instead of accumulating rounding.
-    f.moved = ctx.place(a, push_axis, p(b) + sign * (h(a) + h(b)));
+    // A body of a row squeezed last step keeps the overlap it had (ForceStatic::kept_squeeze).
+    const double target = p(b) + sign * (h(a) + h(b) - walls_.kept_squeeze(ctx, a, b, push_axis));
+    f.moved = ctx.place(a, push_axis, target, follower);
+    if (p(a) != target) state_.flag(a, b);  // stopped short by a body in its way
     f.backing = static_cast<std::int8_t>(-sign);
     state_.support(push_axis, a, -sign, anchor);
     walls_.add({a, b, push_axis, -sign, anchor, depth});  // the caller runs the walls
@@ -172,9 +177,12 @@ bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, dou
   const double depth_along = sign * (push_axis == 0 ? o.x : o.y);
   const double mass_a = bodies.mass[a] + extra;
   const double mass_b = bodies.mass[b];
-  f.moved = depth_along * (mass_b / (mass_a + mass_b));
-  ctx.move(a, push_axis, f.moved);
-  ctx.move(b, push_axis, f.moved - depth_along);
+  const double share = depth_along * (mass_b / (mass_a + mass_b));
+  f.moved = ctx.move(a, push_axis, share, follower);
+  // Either may stop short at a body in its way (StepContext::move): the rest of the overlap is
+  // left to the chain that body starts, or to the next sweep.
+  if (ctx.move(b, push_axis, share - depth_along) != share - depth_along || f.moved != share)
+    state_.flag(a, b);
   f.extra = extra;
   f.axis = static_cast<std::int8_t>(axis);
   f.stage = Stage::kBack;
@@ -228,7 +236,7 @@ void ChainResolver::hand_back(StepContext& ctx, const Frame& done) {
   Frame& p = stack_.back();
   if (p.stage == Stage::kBack) {  // done.a == p.a: b follows a
     if (done.moved != 0.0) {
-      ctx.move(p.b, p.chain_axis, done.moved);
+      if (ctx.move(p.b, p.chain_axis, done.moved) != done.moved) state_.flag(p.a, p.b);
       p.moved += done.moved;
       gather_candidates(ctx, p, p.a);  // a has moved: what it overlaps now, not before
     }
@@ -245,8 +253,7 @@ void ChainResolver::hand_back(StepContext& ctx, const Frame& done) {
   }
   // done.a == p.b: a follows b
   if (done.moved != 0.0) {
-    ctx.move(p.a, p.chain_axis, done.moved);
-    p.moved += done.moved;
+    p.moved += ctx.move(p.a, p.chain_axis, done.moved);
     state_.flag(p.a);                // a has moved since its own neighbours were checked
     gather_candidates(ctx, p, p.b);  // and b: what it overlaps now, not before
   }

@@ -67,8 +67,10 @@ class ChainResolver {
   void run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b);
   // Resolves (a, b): returns true when the push was split and the frame must go on to chain;
   // a force-static push queues its walls, which the caller runs.
+  // `follower` follows a back when this frame hands back (the other body of the frame below): a's
+  // own moves are not stopped by it.
   bool open(StepContext& ctx, std::uint32_t a, std::uint32_t b, double extra, int axis,
-            bool force_static, std::uint32_t anchor);
+            bool force_static, std::uint32_t anchor, std::uint32_t follower = kNoSlot);
   void gather_candidates(StepContext& ctx, Frame& f, std::uint32_t around);
   // Next candidate of f that body `from` now overlaps and that may still join the chain.
   bool next_candidate(StepContext& ctx, Frame& f, std::uint32_t from, std::uint32_t& c);
@@ -94,6 +96,9 @@ class ChainResolver {
   std::vector<std::uint32_t> level_, adj_start_, adj_, queue_, level_count_;
   std::vector<Frame> stack_;
   std::vector<std::uint32_t> cands_;
+  std::vector<std::uint32_t> found_;  // one suspect body's overlaps
+  // The near pairs are scanned again once more than one body in this many was filed again since.
+  static constexpr std::uint32_t kRescanShare = 8;
   Frame last_{};                       // the result of the last frame that finished without opening
   std::uint64_t near_generation_ = 0;  // broadphase generation the near pairs were scanned in
 };

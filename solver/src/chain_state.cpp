@@ -79,29 +79,53 @@ void ChainState::begin_chain() {
 
 void ChainState::gather_overlaps(StepContext& ctx, std::uint32_t around,
                                  std::vector<std::uint32_t>& out) const {
-  const double tol = ctx.def.touch_tolerance;
-  if (2.0 * ctx.broadphase.moved() < ctx.broadphase.slack()) {
-    // No two bodies can have closed more than the slack since the sweep began: every body that
-    // overlaps `around` now is among its near pairs.
-    const Bodies& b = ctx.bodies;
-    const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
-    for (std::uint32_t k = near_start_[around]; k < near_start_[around + 1]; ++k) {
-      const std::uint32_t j = near_[k];
-      if ((hx + b.hx(j)) - std::abs(x - b.x(j)) > tol &&
-          (hy + b.hy(j)) - std::abs(y - b.y(j)) > tol) {
-        out.push_back(j);
-      }
-    }
-  } else {
-    ctx.broadphase.for_each_overlap(ctx.bodies, around, tol,
-                                    [&](std::uint32_t j) { out.push_back(j); });
+  if (!ctx.broadphase.near_pairs_hold()) {
+    gather_overlaps_refiled(ctx, around, out);
+    return;
   }
+  // Every body that moved less than the broadphase's refile distance since the near pairs were
+  // taken closed by less than the slack with any other such body: every one of them that overlaps
+  // `around` now is among its near pairs.
+  const double tol = ctx.def.touch_tolerance;
+  const Bodies& b = ctx.bodies;
+  const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
+  for (std::uint32_t k = near_start_[around]; k < near_start_[around + 1]; ++k) {
+    const std::uint32_t j = near_[k];
+    if ((hx + b.hx(j)) - std::abs(x - b.x(j)) > tol &&
+        (hy + b.hy(j)) - std::abs(y - b.y(j)) > tol) {
+      out.push_back(j);
+    }
+  }
+}
+
+// Kept out of gather_overlaps: the near-pair loop above runs for every body a chain reaches, and
+// the broadphase queries here, inlined into it, slowed it by a tenth.
+[[gnu::noinline]] void ChainState::gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
+                                                           std::vector<std::uint32_t>& out) const {
+  const double tol = ctx.def.touch_tolerance;
+  const Broadphase& bp = ctx.broadphase;
+  const Bodies& b = ctx.bodies;
+  if (bp.stale(around)) {  // filed again since the near pairs were taken: they do not hold for it
+    bp.for_each_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
+    return;
+  }
+  // Its near pairs, less the bodies filed again since, which the overlay then gives.
+  const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
+  for (std::uint32_t k = near_start_[around]; k < near_start_[around + 1]; ++k) {
+    const std::uint32_t j = near_[k];
+    if ((hx + b.hx(j)) - std::abs(x - b.x(j)) > tol &&
+        (hy + b.hy(j)) - std::abs(y - b.y(j)) > tol && !bp.stale(j)) {
+      out.push_back(j);
+    }
+  }
+  bp.for_each_stale_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
 }
 
 void ChainState::report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,
                               std::uint32_t blocker, int axis) {
   assert(anchor != kNoSlot && blocker != kNoSlot);
   reach(body);
+  if (marks_[body].crushed) return;  // reported once a step, from whichever side found it first
   marks_[body].crushed = true;
   ctx.crushes.push_back({body, anchor, blocker, static_cast<Axis>(axis)});
   ++ctx.stats.crush_events;

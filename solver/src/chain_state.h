@@ -27,14 +27,29 @@ class ChainState {
   // A fresh mark for the next chain.
   void begin_chain();
 
-  // Appends to `out` every body that now overlaps `around`: from its near pairs while no body has
-  // moved half the broadphase slack since the sweep began, else from the grid.
+  // Appends to `out` every body that now overlaps `around`: from its near pairs and the bodies the
+  // broadphase filed again since they were taken, or, when `around` itself was filed again, from
+  // the grid.
   void gather_overlaps(StepContext& ctx, std::uint32_t around,
                        std::vector<std::uint32_t>& out) const;
+  // gather_overlaps once some body was filed again since the near pairs were taken.
+  void gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
+                               std::vector<std::uint32_t>& out) const;
 
   // Direction in which c is pushed out of `from` along axis (+1 or -1).
   static int away(const StepContext& ctx, int axis, std::uint32_t from, std::uint32_t c) {
     return ctx.bodies.pos(axis, c) >= ctx.bodies.pos(axis, from) ? 1 : -1;
+  }
+  // The side of `from` that c was on along axis when the step began, or, when they started level
+  // (within the touch tolerance), is on now. A wall placed against its own wall may land on or
+  // past the middle of the next body of its chain; that body is still pushed on the side it was on.
+  static int side_at_start(const StepContext& ctx, int axis, std::uint32_t from, std::uint32_t c) {
+    // Both dynamic here (walls and what they push): their start positions are stored.
+    const Point& a = ctx.bodies.start[from];
+    const Point& b = ctx.bodies.start[c];
+    const double d = axis == 0 ? b.x - a.x : b.y - a.y;
+    if (std::abs(d) <= ctx.def.touch_tolerance) return away(ctx, axis, from, c);
+    return d > 0.0 ? 1 : -1;
   }
   bool supported_towards(int axis, std::uint32_t body, int direction) const {
     const Marks& m = marks_[body];
@@ -76,7 +91,8 @@ class ChainState {
   bool crushed(std::uint32_t body) const {
     return marks_[body].reached == step_ && marks_[body].crushed;
   }
-  // Reports `body` squeezed between `anchor` and `blocker` and leaves it alone for the step.
+  // Reports `body` squeezed between `anchor` and `blocker` (once a step) and leaves it alone for
+  // the step.
   void report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,
                     std::uint32_t blocker, int axis);
 

@@ -1,15 +1,34 @@
 #include "force_static.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace chain::detail {
+namespace {
+
+// The walls of the current chain along an axis, for StepContext::place.
+struct WallsOf {
+  const ChainState* state;
+  int axis;
+  static bool passes(const void* arg, std::uint32_t c) {
+    const auto* w = static_cast<const WallsOf*>(arg);
+    return w->state->walled(c, w->axis);
+  }
+};
+
+}  // namespace
+
 void ForceStatic::run(StepContext& ctx, ChainState& state) {
   const double tol = ctx.def.touch_tolerance;
-  for (const Item& root : queue_)
+  if (against_.size() < ctx.bodies.size()) against_.resize(ctx.bodies.size());
+  for (const Item& root : queue_) {
     state.wall(root.body, root.axis);
+    against_[root.body] = root.wall;
+  }
   for (std::size_t k = 0; k < queue_.size() && !state.cut; ++k) {
     const Item item = queue_[k];
     const std::uint32_t w = item.body;
+    if (rows_ && state.crushed(w)) continue;  // placed with its crushed row: nothing to push
     const int axis = item.axis;
     auto p = [&](std::uint32_t i) { return ctx.bodies.pos(axis, i); };
     auto h = [&](std::uint32_t i) { return ctx.bodies.half(axis, i); };
@@ -32,7 +51,9 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
         state.flag(w, c);  // they meet across the chaining axis: the next sweep takes it
         continue;
       }
-      const int dir = ChainState::away(ctx, axis, w, c);
+      // The side c started the step on: a wall lands where its own wall puts it, which may be on
+      // or past c's middle, and c is still pushed on the side it was on.
+      const int dir = ChainState::side_at_start(ctx, axis, w, c);
       if (dir == item.backing) {
         // c lies between the wall and the wall's own support. If c rests on that side too, the
         // wall rests on c; otherwise c is not this wall's to push.
@@ -40,8 +61,13 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
           state.flag(w, c);
           continue;
         }
+        // The overlap a squeezed row keeps between its bodies is contact: nothing to yield.
+        if (squeezes_ && (axis == 0 ? o.x : o.y) <= kept_squeeze(ctx, w, c, axis) + tol) continue;
         if (!state.spend(ctx)) break;
-        yield(ctx, state, w, c, axis);
+        if (!yield(ctx, state, w, c, axis)) {
+          state.flag(w, c);  // a body beyond w keeps it from yielding: the next sweep takes it
+          continue;
+        }
         cands_.clear();  // w moved: look again from its new place
         state.gather_overlaps(ctx, w, cands_);
         i = static_cast<std::size_t>(-1);
@@ -49,18 +75,32 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
       }
       if (state.supported_towards(axis, c, dir)) {
         // Supported beyond the wall while the wall is supported behind: a squeeze.
-        state.report_crush(ctx, w, item.anchor, state.support_anchor(c), axis);
-        break;
+        if (squeeze(ctx, state, item, c, dir)) break;
+        continue;
       }
       if (!state.spend(ctx)) break;
       // A wall the chain placed already, met by another wall of the chain on that wall's free
       // side, rests on the higher of the two: it moves on and its own walls follow (it is
       // queued again). Each such move is further the same way, so this ends.
-      state.wall(c, axis);
       ctx.note_push(c, w, axis, dir);
       // Placed against w rather than moved by the depth: resting stacks rebuild the same
       // positions every step instead of accumulating rounding.
-      ctx.place(c, axis, p(w) + dir * (h(c) + h(w)));
+      // Guarded (StepContext::move) against every body but the walls of this chain: c may land
+      // on or past the middle of another wall of it, which is pushed on the side it started on
+      // all the same (side_at_start), and where two walls of the chain meet the squeeze is found;
+      // but it never jumps past a body the chain has not placed.
+      const double flush = p(w) + dir * (h(c) + h(w) - kept_squeeze(ctx, c, w, axis));
+      const WallsOf walls{&state, axis};
+      ctx.place(c, axis, flush, kNoSlot, true, &WallsOf::passes, &walls);
+      if (p(c) != flush) {
+        // Stopped short: not flush, so not a wall this chain can build on; the next sweep
+        // resolves what is left.
+        state.visit(c);
+        state.flag(w, c);
+        continue;
+      }
+      state.wall(c, axis);
+      against_[c] = w;
       state.support(axis, c, -dir, item.anchor);
       queue_.push_back(
           {c, w, item.depth + 1, item.anchor, item.axis, static_cast<std::int8_t>(-dir)});
@@ -69,14 +109,17 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
   queue_.clear();
 }
 
-void ForceStatic::yield(StepContext& ctx, ChainState& state, std::uint32_t w, std::uint32_t c,
+bool ForceStatic::yield(StepContext& ctx, ChainState& state, std::uint32_t w, std::uint32_t c,
                         int axis) {
-  const int c_side = ChainState::away(ctx, axis, w, c);
+  const int c_side = ChainState::side_at_start(ctx, axis, w, c);
   auto p = [&](std::uint32_t i) { return ctx.bodies.pos(axis, i); };
   auto h = [&](std::uint32_t i) { return ctx.bodies.half(axis, i); };
   ctx.note_push(w, c, axis, -c_side);
-  ctx.place(w, axis, p(c) - c_side * (h(w) + h(c)));
+  const double target = p(c) - c_side * (h(w) + h(c));
+  const WallsOf walls{&state, axis};  // guarded as a placement is (run())
+  ctx.place(w, axis, target, kNoSlot, true, &WallsOf::passes, &walls);
   state.flag(w);  // bodies this wall already pushed may now overlap it again
+  return p(w) == target;
 }
 
 // item.body was pushed against item.wall, away from its backing; an immovable body overlapping
@@ -94,6 +137,12 @@ void ForceStatic::crush_check(StepContext& ctx, ChainState& state, const Item& i
     const Overlap o = overlap(bodies, body, d);
     if (o.x <= tol || o.y <= tol || overlap_axis(o) != axis) continue;
     if ((p(d) - p(wall)) * side <= 0.0) continue;  // d is on the wall's side, not beyond body
+    // The row from the anchor through body takes the squeeze together, when the walls lead back
+    // to an immovable body.
+    row_.clear();
+    const std::uint32_t anchor = walls_back(ctx, state, body, axis, row_);
+    std::reverse(row_.begin(), row_.end());
+    if (anchor != kNoSlot && anchor != d && squeeze_row(ctx, state, anchor, d, axis)) return;
     const double wall_face = p(wall) + side * h(wall);
     const double blocker_face = p(d) - side * h(d);
     ctx.place(body, axis, 0.5 * (wall_face + blocker_face));
@@ -101,6 +150,113 @@ void ForceStatic::crush_check(StepContext& ctx, ChainState& state, const Item& i
     state.report_crush(ctx, body, item.anchor == kNoSlot ? wall : item.anchor, d, axis);
     return;
   }
+}
+
+void ForceStatic::begin_step(std::size_t bodies) {
+  if (squeezed_.size() != bodies) squeezed_.assign(bodies, 0);
+  if (++step_ == 0xffffffffu) forget_slots();
+  squeezes_ = squeezes_ > 0 ? squeezes_ - 1 : 0;  // counts down from 2: this step and the next
+  rows_ = 0;
+}
+
+void ForceStatic::forget_slots() {
+  std::fill(squeezed_.begin(), squeezed_.end(), 0u);
+  step_ = 1;
+  squeezes_ = 0;
+}
+
+// Kept out of run(): its loop runs for every wall of every step, a squeeze seldom.
+[[gnu::noinline]] bool ForceStatic::squeeze(StepContext& ctx, ChainState& state, const Item& item,
+                                            std::uint32_t c, int dir) {
+  const std::uint32_t w = item.body;
+  const int axis = item.axis;
+  // The row from the wall's anchor through w, and on through c to c's, takes it together. A body
+  // between w and c as the step began, placed against w already or still to be placed by run()'s
+  // loop, is the end of this side's row: the squeeze is found again from it.
+  for (const std::uint32_t e : cands_) {
+    if (e == c || ctx.bodies.immovable(e) || state.crushed(e)) continue;
+    const bool placed_here = state.walled(e, axis) && against_[e] == w;
+    if ((placed_here || !state.visited(e)) && ChainState::side_at_start(ctx, axis, w, e) == dir &&
+        ChainState::side_at_start(ctx, axis, e, c) == dir) {
+      return false;
+    }
+  }
+  // The row goes on through the body of the other side nearest to w when the step began (w may
+  // overlap several of them).
+  std::uint32_t next = c;
+  for (const std::uint32_t d : cands_) {
+    if (d == w || ctx.bodies.immovable(d) || !state.walled(d, axis) ||
+        !state.supported_towards(axis, d, dir) ||
+        ChainState::side_at_start(ctx, axis, w, d) != dir) {
+      continue;
+    }
+    if (std::abs(ctx.bodies.start_pos(axis, d) - ctx.bodies.start_pos(axis, w)) <
+        std::abs(ctx.bodies.start_pos(axis, next) - ctx.bodies.start_pos(axis, w))) {
+      next = d;
+    }
+  }
+  row_.clear();
+  const std::uint32_t anchor = walls_back(ctx, state, w, axis, row_);
+  std::reverse(row_.begin(), row_.end());
+  const std::uint32_t blocker = walls_back(ctx, state, next, axis, row_);
+  if (anchor == kNoSlot || blocker == kNoSlot || !squeeze_row(ctx, state, anchor, blocker, axis)) {
+    state.report_crush(ctx, w, item.anchor, state.support_anchor(c), axis);
+  }
+  return true;
+}
+
+std::uint32_t ForceStatic::walls_back(const StepContext& ctx, const ChainState& state,
+                                      std::uint32_t from, int axis,
+                                      std::vector<std::uint32_t>& out) const {
+  std::uint32_t b = from;
+  for (std::uint32_t steps = 0; steps <= ctx.bodies.dynamic_end; ++steps) {
+    if (!state.walled(b, axis)) return kNoSlot;
+    out.push_back(b);
+    const std::uint32_t next = against_[b];
+    if (next == kNoSlot) return kNoSlot;
+    if (ctx.bodies.immovable(next)) return next;
+    b = next;
+  }
+  return kNoSlot;
+}
+
+bool ForceStatic::squeeze_row(StepContext& ctx, ChainState& state, std::uint32_t anchor,
+                              std::uint32_t blocker, int axis) {
+  Bodies& bodies = ctx.bodies;
+  if (anchor == blocker || row_.empty()) return false;
+  auto p = [&](std::uint32_t i) { return bodies.pos(axis, i); };
+  auto h = [&](std::uint32_t i) { return bodies.half(axis, i); };
+  const double side = p(blocker) > p(anchor) ? 1.0 : -1.0;
+  const double from = p(anchor) + side * h(anchor), to = p(blocker) - side * h(blocker);
+  double length = 0.0;
+  for (std::size_t k = 0; k < row_.size(); ++k) {
+    length += 2.0 * h(row_[k]);
+    // A row, in order from the anchor to the blocker (as the step found them: the walls may have
+    // landed on each other's middles since), each body a wall of this chain.
+    if (k > 0 &&
+        side * (bodies.start_pos(axis, row_[k]) - bodies.start_pos(axis, row_[k - 1])) <= 0.0)
+      return false;
+  }
+  // Every one of the row's contacts, the two faces' included, overlaps by the same depth.
+  const double depth = (length - side * (to - from)) / static_cast<double>(row_.size() + 1);
+  double at = from - side * depth;  // the near face of the next body
+  for (std::size_t k = 0; k < row_.size(); ++k) {
+    const std::uint32_t b = row_[k];
+    // Each pressed against the one before it: the velocity rule takes the row as one group,
+    // held by both immovable bodies.
+    ctx.note_push(b, k == 0 ? anchor : row_[k - 1], axis, side);
+    ctx.set(b, axis, at + side * h(b));
+    at += side * (2.0 * h(b) - depth);
+    state.report_crush(ctx, b, anchor, blocker, axis);
+    state.flag(b);  // what rests on the row may overlap it now
+    // A lone body is centred between the two faces again from scratch every step; a row keeps
+    // its squeeze, so that the step adds only what it closes (kept_squeeze).
+    if (row_.size() > 1) squeezed_[b] = step_;
+  }
+  ctx.note_push(row_.back(), blocker, axis, -side);  // held by the blocker too (velocity rule)
+  if (row_.size() > 1) squeezes_ = 2;
+  ++rows_;
+  return true;
 }
 
 }  // namespace chain::detail

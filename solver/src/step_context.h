@@ -17,6 +17,14 @@ namespace chain::detail {
 
 inline constexpr int kAnyAxis = 2;
 
+// How deep, as a share of what push-out can undo, a body may come to be in another before
+// push-out resolves the pair: push-out separates two boxes along their axis of least overlap, away
+// from each other's centre, so it sends a body back the way it came only while that body has not
+// crossed the other's centre and is less deep along the axis it came in on than across it. The
+// share keeps clear of both edges, so rounding never decides. The sweep stops fast bodies there
+// (sweep.h), and the modern resolver's moves stop there too (StepContext::move).
+inline constexpr double kPushOutShare = 0.9;
+
 struct CrushRecord {
   std::uint32_t body, anchor, blocker;
   Axis axis;
@@ -32,26 +40,72 @@ struct StepContext {
   std::uint64_t budget;  // pair resolutions left this step
   const Motion& motion;  // what integration did this step
   bool record_links;     // pushes are recorded for the inelastic rule or friction
+  // Modern: no move takes a body past the centre of a body in its way (see limit_move).
+  bool guard_moves;
 
   double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
 
-  // Moves body i by d along axis. Under the zero rule, a velocity component that points against
-  // the move stops, as the 2014 engine's updateTransform did.
-  void move(std::uint32_t i, int axis, double d) {
+  // Moves body i by d along axis, or less when guarded (limit_move); returns how far it moved.
+  // Under the zero rule, a velocity component that points against the move stops, as the 2014
+  // engine's updateTransform did.
+  double move(std::uint32_t i, int axis, double d, std::uint32_t follower = kNoSlot) {
+    if (guarded(d)) d = limit_move(i, axis, d, follower, nullptr, nullptr);
     bodies.pos(axis, i) += d;
-    broadphase.note_move(i, bodies.x(i), bodies.y(i));
-    if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
-  }
-
-  // Puts body i at `target` along axis; returns how far it moved.
-  double place(std::uint32_t i, int axis, double target) {
-    const double d = target - bodies.pos(axis, i);
-    bodies.pos(axis, i) = target;
     broadphase.note_move(i, bodies.x(i), bodies.y(i));
     if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
     return d;
   }
 
+  // Puts body i at `target` along axis, or short of it when guarded (and `guard`); returns how far
+  // it moved.
+  // Bodies for which passes(arg, c) is true do not stop a guarded move (a chain's own walls).
+  using Passes = bool (*)(const void* arg, std::uint32_t c);
+
+  double place(std::uint32_t i, int axis, double target, std::uint32_t follower = kNoSlot,
+               bool guard = true, Passes passes = nullptr, const void* arg = nullptr) {
+    double d = target - bodies.pos(axis, i);
+    if (guard && guarded(d) &&
+        (d = limit_move(i, axis, d, follower, passes, arg)) != target - bodies.pos(axis, i)) {
+      bodies.pos(axis, i) += d;
+    } else {
+      bodies.pos(axis, i) = target;  // exactly: resting stacks rebuild the same positions
+    }
+    broadphase.note_move(i, bodies.x(i), bodies.y(i));
+    if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
+    return d;
+  }
+
+  // Puts body i at `target` along axis, unguarded: for placements that are a squeeze's answer,
+  // where every body of a row overlaps its neighbours by design.
+  void set(std::uint32_t i, int axis, double target) {
+    const double d = target - bodies.pos(axis, i);
+    bodies.pos(axis, i) = target;
+    broadphase.note_move(i, bodies.x(i), bodies.y(i));
+    if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
+  }
+
+  // A push moves a body at once by up to an overlap depth, through whatever lies in between: a
+  // body pushed out of one it was created deep inside, or followed back along a chain, could cross
+  // a third body entirely, or past its centre, where push-out then sends it on through. So the
+  // move of body i by d along axis stops where i would be deeper in a body ahead of it than
+  // kPushOutShare of the way to its centre: push-out or the chain then resolves that pair the
+  // right way round. Bodies that overlap i across the move by less than half the smaller box are
+  // grazed, not passed through, and do not stop it; nor do bodies i is already deeper in than
+  // half the way from that depth to the centre (only creation leaves a pair so deep, and stopping
+  // there would leave it stuck). A static or kinematic body that i was outside of along the move
+  // when the step began stops it only before it would come out beyond: push-out takes i back out
+  // through the face it came in by at any depth (entry_face.h). `follower` (if any) is about to
+  // move after i by as much (a chain's follow-back) and does not stop it. Returns the move
+  // allowed, of d's sign and at most |d|.
+  double limit_move(std::uint32_t i, int axis, double d, std::uint32_t follower, Passes passes,
+                    const void* arg) const;
+
+ private:
+  // Moves shorter than this cannot take a body past a centre it is kept clear of by the guard:
+  // only longer ones are checked (resting contacts move far less).
+  bool guarded(double d) const { return guard_moves && std::abs(d) > broadphase.free_move(); }
+
+ public:
   // Records that `a` was pushed out of `b` along axis, in direction sign (+1 or -1).
   void note_push(std::uint32_t a, std::uint32_t b, int axis, double sign) {
     const std::uint8_t a_side = axis == 0 ? (sign > 0 ? touching::kLeft : touching::kRight)

@@ -57,6 +57,35 @@ Toi time_of_impact(const double r[2], const double u[2], const double ext[2], do
   return toi;
 }
 
+// The latest time in [toi.at, 1] (step fractions) at which f, moving relative to c by r(t) = r +
+// t u, is still shallow enough for push-out to send it back the way it came in (toi.axis):
+// depth along that axis at most kPushOutShare of the summed half extents there, and at most
+// kPushOutShare of the overlap across. Depth grows linearly after the meeting and the overlap
+// across is a tent in t, so each condition is linear on each side of the tent's peak.
+double push_out_limit(const Bodies& bodies, std::uint32_t f, std::uint32_t c, const double r[2],
+                      const double u[2], const Toi& toi) {
+  const int k = toi.axis, v = 1 - k;
+  const double side = u[k] < 0.0 ? 1.0 : -1.0;  // the side of c that f comes from
+  const double full_k = bodies.half(k, f) + bodies.half(k, c);
+  const double full_v = bodies.half(v, f) + bodies.half(v, c);
+  // depth(t) = d0 + d1 t, d1 > 0: it closes along k.
+  const double d0 = full_k - side * r[k], d1 = -side * u[k];
+  const double s = kPushOutShare;
+  double limit = kInfinity;
+  // Each condition as a + b t <= 0.
+  auto bound = [&](double a, double b) {
+    if (b > 0.0) {
+      limit = std::min(limit, -a / b);
+    } else if (a + b * toi.at > 0.0) {
+      limit = toi.at;  // never met after the meeting: stop there
+    }
+  };
+  bound(d0 - s * full_k, d1);
+  bound(d0 + s * r[v] - s * full_v, d1 + s * u[v]);  // across, where r_v(t) >= 0
+  bound(d0 - s * r[v] - s * full_v, d1 - s * u[v]);  // across, where r_v(t) <= 0
+  return std::max(limit, toi.at);
+}
+
 }  // namespace
 
 bool Sweep::run(StepContext& ctx, ChainState& state) {
@@ -64,7 +93,10 @@ bool Sweep::run(StepContext& ctx, ChainState& state) {
   ctx.stats.fast_bodies = static_cast<std::uint32_t>(fast.size());
   if (fast.empty()) return false;
   Bodies& bodies = ctx.bodies;
-  ctx.broadphase.build(bodies);
+  // The grid of earlier steps serves while the body set is the same: integration filed the fast
+  // bodies again where they went (and any other body that moved far), so queries find them.
+  const bool build = !ctx.broadphase.built();
+  if (build) ctx.broadphase.build(bodies);
   if (fast_.size() != bodies.size()) fast_.assign(bodies.size(), 0);
   for (const std::uint32_t i : fast)
     fast_[i] = 1;
@@ -99,7 +131,7 @@ bool Sweep::run(StepContext& ctx, ChainState& state) {
   ctx.stats.swept = static_cast<std::uint32_t>(results_.size());
   for (const std::uint32_t i : fast)
     fast_[i] = 0;
-  return true;
+  return build;
 }
 
 void Sweep::gather_pairs(StepContext& ctx) {
@@ -148,23 +180,16 @@ double Sweep::dynamic_stop(const StepContext& ctx, std::uint32_t f, const Pair* 
   for (const Pair* p = begin; p != end; ++p) {
     const std::uint32_t c = p->other;
     if (bodies.immovable(c)) continue;
-    double r[2], u[2], ext[2], r1[2];
+    double r[2], u[2], ext[2];
     for (int k = 0; k < 2; ++k) {
       r[k] = bodies.start_pos(k, f) - bodies.start_pos(k, c);
-      r1[k] = bodies.pos(k, f) - bodies.pos(k, c);
-      u[k] = r1[k] - r[k];
+      u[k] = (bodies.pos(k, f) - bodies.pos(k, c)) - r[k];
       ext[k] = std::max(0.0, bodies.half(k, f) + bodies.half(k, c) - tol);
     }
     const Toi toi = time_of_impact(r, u, ext, 1.0);
     if (!toi.hit) continue;
-    const int k = toi.axis;
-    const double side = u[k] < 0.0 ? 1.0 : -1.0;  // the side of c that f comes from
-    const double allowance = 0.5 * std::min(bodies.half(k, f), bodies.half(k, c));
-    const double full = bodies.half(k, f) + bodies.half(k, c);
-    const bool overlap_at_end =
-        std::abs(r1[0]) < ext[0] && std::abs(r1[1]) < ext[1] && side * r1[k] > 0.0;
-    if (overlap_at_end && full - side * r1[k] <= allowance) continue;  // push-out can take it
-    stop = std::min(stop, toi.at + allowance / std::abs(u[k]));
+    const double until = push_out_limit(bodies, f, c, r, u, toi);
+    if (until < 1.0) stop = std::min(stop, until);  // else push-out takes the step's end as it is
   }
   return stop;
 }

@@ -21,13 +21,17 @@
 // is squeezed: it is reported as a crush event and stays where it met the second face.
 //
 // Against dynamic bodies: a fast dynamic body is swept against the straight-line motion of every
-// other dynamic body over the step (start position to integrated position). At the first meeting
-// that would leave it past the other body, or inside it by more than a quarter of the smaller box
-// along the axis they met on, the body's motion stops just that deep (the rest of its step is
-// dropped; it keeps its velocity), and push-out then resolves the overlap as between slow bodies:
-// mass split, chains, force-static backing, velocity rule. What is not promised: when both bodies
-// are fast and one is stopped earlier by a third body, the other may pass where the first would
-// have been; and bodies moved by pushes are not swept (a push moves a body by an overlap depth).
+// other dynamic body over the step (start position to integrated position). Push-out separates a
+// pair along its axis of least overlap, away from the other's centre, so it undoes a meeting
+// correctly while the body has not crossed the other's centre along the axis they met on and is
+// less deep along it than across it. Only where the step would end beyond that (kPushOutShare of
+// it, clear of rounding) does the body's motion stop, at that depth (the rest of its step is
+// dropped; it keeps its velocity); a shallower end is left as integrated, so a fast pusher pushes
+// exactly as far as push-out alone makes it. Push-out then resolves the overlap as between slow
+// bodies: mass split, chains, force-static backing, velocity rule. What is not promised: when both
+// bodies are fast and one is stopped earlier by a third body, the other may pass where the first
+// would have been; and bodies moved by pushes are not swept (a push moves a body by an overlap
+// depth).
 //
 // Every result is computed from the positions integration left, then applied, so results do not
 // depend on the order bodies are swept in.
@@ -45,7 +49,7 @@ namespace chain::detail {
 class Sweep {
  public:
   // Sweeps the step's fast bodies (ctx.motion.fast()) and what they may meet. Returns true when
-  // there were any: it then built the broadphase, and moved bodies since.
+  // it built the broadphase (the first step after the body set changed), and moved bodies since.
   bool run(StepContext& ctx, ChainState& state);
 
   static constexpr int kMaxSlides = 4;

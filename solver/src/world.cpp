@@ -195,6 +195,7 @@ void World::step(double dt) {
   w.response.clear();
   std::fill(w.bodies.touching.begin(), w.bodies.touching.end(), std::uint8_t{0});
 
+  const std::uint64_t examined = w.broadphase.examined();
   const bool modern = w.def.variant == Variant::kModern;
   const bool rough = modern && w.rough_bodies > 0;
   w.motion.integrate(w.bodies, w.broadphase, w.def.gravity, dt, modern, rough);
@@ -203,7 +204,8 @@ void World::step(double dt) {
   detail::StepContext ctx{
       w.bodies, w.broadphase, w.response,
       w.def,    w.stats,      w.crush_records,
-      budget,   w.motion,     w.def.velocity_rule == VelocityRule::kInelastic || rough};
+      budget,   w.motion,     w.def.velocity_rule == VelocityRule::kInelastic || rough,
+      modern};
   if (modern) {
     w.modern.resolve(ctx);
   } else {
@@ -214,6 +216,8 @@ void World::step(double dt) {
   }
   if (rough)
     w.friction.apply(w.bodies, w.broadphase, w.response.links(), w.motion.pre_velocity, dt);
+  w.stats.candidates = static_cast<std::uint32_t>(
+      std::min<std::uint64_t>(w.broadphase.examined() - examined, 0xffffffffu));
   w.crushes.clear();
   for (const detail::CrushRecord& r : w.crush_records) {
     w.crushes.push_back({BodyId{w.bodies.id[r.body]}, BodyId{w.bodies.id[r.anchor]},

@@ -78,7 +78,7 @@ TEST_P(BroadphasePairs, MatchBruteForce) {
     bp.configure(b);
     bp.build(b);
     Pairs near;
-    bp.for_each_near_pair([&](std::uint32_t i, std::uint32_t j) {
+    bp.for_each_near_pair(b, [&](std::uint32_t i, std::uint32_t j) {
       ASSERT_LT(i, j);
       ASSERT_TRUE(near.insert({i, j}).second) << "pair reported twice";
     });
@@ -109,6 +109,63 @@ TEST(Broadphase, QueryAfterAPushFindsBodiesNearTheNewPlace) {
   found.clear();
   bp.for_each_overlap(b, slot_of_id[30], 0.0, [&](std::uint32_t j) { found.push_back(j); });
   EXPECT_EQ(found, std::vector<std::uint32_t>{moved});
+}
+
+// Far moves file bodies again instead of widening every query: after random moves, from tiny to
+// far beyond the grid's bounding box, every query still finds exactly the overlaps a brute-force
+// scan finds, the near pairs then scanned hold every overlapping pair, and they go on holding it
+// while bodies move within the refile distance.
+TEST_P(BroadphasePairs, FindEveryOverlapAfterFarMoves) {
+  const Mix m = GetParam();
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Bodies b = random_bodies(7, m.n, m.spread, m.min_half, m.max_half);
+  Broadphase bp;
+  bp.configure(b);
+  bp.build(b);
+  auto move = [&](double scale) {
+    for (std::uint32_t i = 0; i < b.size(); ++i) {
+      if (b.immovable(i) && b.type[i] == BodyType::kStatic) continue;
+      if (unit(rng) < 0.5) continue;
+      for (int k = 0; k < 2; ++k)
+        b.pos(k, i) += (unit(rng) - 0.5) * scale;
+      bp.note_move(i, b.x(i), b.y(i));
+    }
+  };
+  auto check_queries = [&] {
+    const Pairs truth = brute_force(b, 0.0);
+    Pairs found;
+    for (std::uint32_t i = 0; i < b.size(); ++i) {
+      bp.for_each_overlap(b, i, 0.0, [&](std::uint32_t j) {
+        if (!(b.immovable(i) && b.immovable(j))) found.insert({std::min(i, j), std::max(i, j)});
+      });
+    }
+    EXPECT_EQ(found, truth);
+  };
+  move(4.0 * m.spread);  // most moves far: filed again, some beyond the grid
+  check_queries();
+  Pairs near;
+  bp.for_each_near_pair(b, [&](std::uint32_t i, std::uint32_t j) {
+    ASSERT_LT(i, j);
+    ASSERT_TRUE(near.insert({i, j}).second) << "pair reported twice";
+  });
+  for (const auto& p : brute_force(b, 0.0))
+    EXPECT_TRUE(near.count(p)) << p.first << " " << p.second;
+  // Moves within the refile distance keep the near pairs whole.
+  for (int round = 0; round < 3; ++round) {
+    for (std::uint32_t i = 0; i < b.size(); ++i) {
+      if (b.type[i] == BodyType::kStatic) continue;
+      for (int k = 0; k < 2; ++k) {
+        const double d = (unit(rng) - 0.5) * bp.refile_distance() / 2.0;
+        b.pos(k, i) += d;
+      }
+      bp.note_move(i, b.x(i), b.y(i));
+    }
+    if (!bp.near_pairs_hold()) continue;  // some body went past its refile distance: no promise
+    for (const auto& p : brute_force(b, 0.0))
+      EXPECT_TRUE(near.count(p)) << "round " << round << ": " << p.first << " " << p.second;
+  }
+  check_queries();
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <string>
 #include <vector>
@@ -139,6 +141,84 @@ TEST(ChainWork, DenseOverlappingPileStaysWithinBudgetAndSeparates) {
   EXPECT_EQ(w.last_step_stats().crush_events, 0u);
 }
 
+// The layout of the harness's overlapping_pile stress case: n boxes of half extent 0.3 to 0.5 m
+// dropped at random into a container half as tall as they need, on a floor between two walls.
+std::vector<BodyId> overlapping_pile(World& w, int n, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  const double width = std::max(6.0, std::sqrt(static_cast<double>(n)));
+  const double height = 0.5 * static_cast<double>(n) / width;
+  std::vector<BodyId> ids = {add_floor(w, 0.5 * width + 2.0)};
+  const double wall = 4.0 * height + 10.0;
+  ids.push_back(w.create_body(static_box(-0.5 * width - 0.5, 0.5 * wall, 0.5, 0.5 * wall)));
+  ids.push_back(w.create_body(static_box(0.5 * width + 0.5, 0.5 * wall, 0.5, 0.5 * wall)));
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    const double h = 0.3 + 0.2 * unit(rng);
+    const double x = -0.5 * width + h + (width - 2.0 * h) * unit(rng);
+    ids.push_back(w.create_body(dynamic_box(x, h + height * unit(rng), h, 4.0 * h * h)));
+  }
+  return ids;
+}
+
+// Issue 2: one step of a 100,000-box overlapping pile did not end in 600 s. Pushes sent bodies
+// far, the broadphase widened every later query by the largest push of the step, and the queries
+// scanned most of the pile: work per body grew with the pile, quadratic in all. Bodies that move
+// far are now filed again where they are. The search work per body (candidates the broadphase
+// examined) is then much the same in a pile ten times larger, a few hundred times the step's
+// other work (pair resolutions, bounded by the budget, contacts and bodies), where widened queries
+// would scan thousands of bodies each.
+TEST(ChainWork, OverlappingPileStepSearchWorkPerBodyIsBounded) {
+  double per_body[2] = {0.0, 0.0};
+  const int sizes[2] = {2000, 20000};
+  for (int k = 0; k < 2; ++k) {
+    const int n = sizes[k];
+    World w(world_def(Variant::kModern, VelocityRule::kInelastic));
+    overlapping_pile(w, n, 5);
+    for (int step = 0; step < 2; ++step) {
+      w.step(kDt);
+      const StepStats& st = w.last_step_stats();
+      const double work = static_cast<double>(st.resolve_calls) + st.contacts + n;
+      EXPECT_LT(st.candidates, 500.0 * work) << "n " << n << " step " << step;
+      per_body[k] = std::max(per_body[k], st.candidates / static_cast<double>(n));
+    }
+  }
+  EXPECT_LT(per_body[1], 2.0 * per_body[0]) << "per body at 2,000: " << per_body[0];
+}
+
+// A fast body used to widen the broadphase's one global displacement margin: the step after the
+// sweep rebuilt the grid and rescanned the near pairs, which roughly doubled a step of a resting
+// pyramid with one fast box flying past. The box is now filed again where the sweep left it, and
+// the sweep's build serves the whole step.
+TEST(ChainWork, OneFastBodyDoesNotDoubleAStepsSearchWork) {
+  constexpr int kSteps = 30;
+  // Candidates examined by the first step (which builds the grid and scans the near pairs) and by
+  // all kSteps steps.
+  auto candidates = [](bool with_fast, double& first) {
+    World w(world_def(Variant::kModern, VelocityRule::kInelastic));
+    build_pyramid(w, 40);
+    if (with_fast) {
+      BodyDef shot = dynamic_box(-200.0, 60.0, 0.1);
+      shot.gravity_scale = 0.0;
+      shot.velocity = {600.0, 0.0};
+      w.create_body(shot);
+    }
+    double total = 0.0;
+    for (int step = 0; step < kSteps; ++step) {
+      w.step(kDt);
+      if (with_fast) {
+        EXPECT_EQ(w.last_step_stats().fast_bodies, 1u);
+      }
+      if (step == 0) first = w.last_step_stats().candidates;
+      total += w.last_step_stats().candidates;
+    }
+    return total;
+  };
+  double scan = 0.0, unused = 0.0;
+  const double resting = candidates(false, scan), with_fast = candidates(true, unused);
+  // The fast box's own query along its path is all it adds: far less than a grid scan a step.
+  EXPECT_LT((with_fast - resting) / kSteps, 0.25 * scan) << "resting " << resting;
+}
+
 // Five 1 m boxes between walls 4 m apart cannot all fit: every step ends, reports the squeeze,
 // and keeps every box between the walls.
 TEST(ChainWork, RowWiderThanItsGapIsCrushedNotLooped) {
@@ -156,6 +236,48 @@ TEST(ChainWork, RowWiderThanItsGapIsCrushedNotLooped) {
   for (const BodyId id : row) {
     EXPECT_GE(w.position(id).x, -2.0);
     EXPECT_LE(w.position(id).x, 2.0);
+  }
+}
+
+// Issue 4: two kinematic walls closing in on a row of touching boxes (top-down, no gravity). The
+// row used to take the whole squeeze at one contact, which grew every step until the boxes there
+// passed each other and flew (4.5 m/s with walls at 0.5 m/s). The squeeze is spread over the row:
+// after time t the walls have closed 2 v t, every one of the n + 1 contacts overlaps by
+// e = 2 v t / (n + 1), and box i is centred at the left face + (2i + 1) h - (i + 1) e, where the
+// left face is at -n h + v t. No box moves faster than the walls, and every box is reported
+// crushed between them, every step.
+TEST(ChainWork, ConvergingWallsSpreadTheSqueezeEvenlyOverTheRow) {
+  for (const VelocityRule rule : {VelocityRule::kZero, VelocityRule::kInelastic}) {
+    for (const int n : {1, 2, 3, 5, 10, 50, 300}) {
+      for (const double v : {0.2, 0.5, 2.0}) {
+        World w(world_def(Variant::kModern, rule, {0.0, 0.0}));
+        const double h = 0.5, half_row = n * h;
+        w.create_body(kinematic_box(-half_row - 0.5, 0.0, 0.5, 2.0, {v, 0.0}));
+        w.create_body(kinematic_box(half_row + 0.5, 0.0, 0.5, 2.0, {-v, 0.0}));
+        std::vector<BodyId> row;
+        for (int i = 0; i < n; ++i)
+          row.push_back(w.create_body(dynamic_box(-half_row + h + 2.0 * h * i, 0.0)));
+        std::vector<double> before(static_cast<std::size_t>(n));
+        // Until the walls have closed a quarter of a box per contact.
+        const int steps = std::min(240, static_cast<int>(0.25 * (n + 1) / (2.0 * v * kDt)));
+        for (int s = 1; s <= steps; ++s) {
+          for (int i = 0; i < n; ++i)
+            before[static_cast<std::size_t>(i)] = w.position(row[static_cast<std::size_t>(i)]).x;
+          w.step(kDt);
+          const double t = s * kDt, e = 2.0 * v * t / (n + 1), left = -half_row + v * t;
+          ASSERT_EQ(w.crush_events().size(), static_cast<std::size_t>(n))
+              << "n " << n << " v " << v << " step " << s;
+          for (int i = 0; i < n; ++i) {
+            const double x = w.position(row[static_cast<std::size_t>(i)]).x;
+            ASSERT_NEAR(x, left - (i + 1) * e + (2 * i + 1) * h, 1e-9 * (1.0 + half_row))
+                << "n " << n << " v " << v << " step " << s << " box " << i;
+            ASSERT_LE(std::abs(x - before[static_cast<std::size_t>(i)]) / kDt, v + 1e-6)
+                << "n " << n << " v " << v << " step " << s << " box " << i;
+          }
+        }
+        EXPECT_EQ(w.last_step_stats().budget_hits, 0u);
+      }
+    }
   }
 }
 

@@ -11,6 +11,9 @@
 //      was at the start of the step relative to that body, so the joins between flush tiles are
 //      neither snagged on nor pushed sideways from, and a body never comes out on the far side.
 //   4. Velocities: the velocity rule, then friction (modern); touching flags and crush events.
+//      A body squeezed between two static or kinematic bodies along an axis is centred between
+//      them; a row of bodies squeezed so (modern) shares the squeeze evenly, every contact along it
+//      overlapping by the same depth, and every body of it is reported crushed, once a step.
 //
 // Fast bodies (modern). A dynamic body is fast in a step when it moves more than half its half
 // extent along an axis; a kinematic body, more than its half extent.
@@ -23,13 +26,21 @@
 //     platform lifting it into a ceiling) is reported as a crush event, and a kinematic body that
 //     keeps going then passes it.
 //   - Against dynamic bodies: a fast dynamic body is swept against the straight-line motion of
-//     every other dynamic body over the step. At the first meeting that would leave it past the
-//     other body, or inside it by more than a quarter of the smaller box, it is moved back along
-//     its path to that depth, and push-out then resolves the collision as between slow bodies
-//     (mass split, chains, velocity rule). So a fast body never passes through a body that moves
-//     as integrated, at any speed. Not guaranteed: if both bodies are fast and one is stopped
-//     earlier in the step by a third body, the other may miss it; bodies pushed by chains are not
-//     swept (a push moves a body at most by an overlap depth).
+//     every other dynamic body over the step. Where it would end too deep in one for push-out to
+//     send it back the way it came (past 90% of the way to the other's centre along the axis it
+//     met on, or deeper along that axis than 90% of the overlap across it, or past the body), it
+//     is moved back along its path to that depth; anywhere shallower it keeps its whole move.
+//     Push-out then resolves the collision as between slow bodies (mass split, chains, velocity
+//     rule): a driven pusher pushes as far at any speed as push-out alone would. So a fast body
+//     never passes through a body that moves as integrated, at any speed. Not guaranteed: if both
+//     bodies are fast and one is stopped earlier in the step by a third body, the other may miss
+//     it.
+//   - Pushes (modern): a push moves a body at once by up to an overlap depth. A push longer than
+//     a tenth of the smallest half extent in the world stops where the body would be 90% of the
+//     way to the centre of a body it meets (across at least half the smaller box), so push-out
+//     never lands a body on or past another's centre, where it would send it on through; what is
+//     left of the overlap is resolved by the chain or the next sweep. Boxes created overlapping
+//     are so pushed apart without one crossing another in a push.
 //
 // The solver depends on the C++ standard library only; this header compiles as C++17 or later.
 // Any function that allocates may also throw std::bad_alloc.
@@ -65,14 +76,14 @@ struct BodyDef {
   double gravity_scale = 1.0;  // dynamic bodies only: finite, |s| <= 1e6 (else ignored)
   double restitution = 0.0;    // in [0, 1]; the inelastic rule bounces by it (modern, seed2014)
   // Coulomb friction coefficient, in [0, kMaxFriction], any body type. A contact's coefficient is
-  // sqrt(fa * fb), the geometric mean rigid-body engines commonly use, so a body with 0 never rubs. Modern variant
-  // only, both velocity rules (seed2014 ignores it); with 0 on every body nothing changes, to the
-  // bit. Push-out leaves no forces, so the normal impulse friction is bounded by is the momentum
-  // the step's push-out and velocity rule took out of the bodies a contact holds up, handed down
-  // through their supports (split evenly where a body rests on several): the bottom contact of a
-  // resting stack carries the whole stack's weight, M g dt a step, and a stack on a moving
-  // platform is carried as one. Friction never changes a component a drive holds, and moves a
-  // body by half the velocity it took, times dt, so a box sliding at v stops after v^2/(2 mu g).
+  // sqrt(fa * fb), the geometric mean rigid-body engines commonly use, so a body with 0 never rubs.
+  // Modern variant only, both velocity rules (seed2014 ignores it); with 0 on every body nothing
+  // changes, to the bit. Push-out leaves no forces, so the normal impulse friction is bounded by is
+  // the momentum the step's push-out and velocity rule took out of the bodies a contact holds up,
+  // handed down through their supports (split evenly where a body rests on several): the bottom
+  // contact of a resting stack carries the whole stack's weight, M g dt a step, and a stack on a
+  // moving platform is carried as one. Friction never changes a component a drive holds, and moves
+  // a body by half the velocity it took, times dt, so a box sliding at v stops after v^2/(2 mu g).
   double friction = 0.0;
 };
 

@@ -36,11 +36,11 @@ Box2dWorld::Box2dWorld(const Scene& scene, const Box2dSettings& settings)
       dt_(scene.dt),
       settings_(settings) {
   if (settings.velocity_iterations < 1 || settings.position_iterations < 0 ||
-      settings.substeps < 1) {
-    throw std::invalid_argument("Box2dWorld: iterations and substeps out of range");
+      settings.substeps < 1 || settings.continuous < 0 || settings.continuous > 2) {
+    throw std::invalid_argument("Box2dWorld: iterations, substeps or continuous out of range");
   }
   world_->SetAllowSleeping(settings.sleep);
-  world_->SetContinuousPhysics(settings.continuous);
+  world_->SetContinuousPhysics(settings.continuous >= 1);
   world_->SetWarmStarting(settings.warm_starting);
   bodies_.reserve(scene.bodies.size());
   for (const SceneBody& sb : scene.bodies) {
@@ -50,7 +50,7 @@ Box2dWorld::Box2dWorld(const Scene& scene, const Box2dSettings& settings)
     def.linearVelocity = sb.kind == BodyKind::kStatic ? b2Vec2(0.0f, 0.0f) : vec(sb.velocity);
     def.fixedRotation = !scene.rotation;
     def.allowSleep = settings.sleep;
-    def.bullet = settings.continuous && sb.kind == BodyKind::kDynamic;
+    def.bullet = settings.continuous >= 2 && sb.kind == BodyKind::kDynamic;
     def.gravityScale = static_cast<float>(sb.gravity_scale);
     b2Body* body = world_->CreateBody(&def);
 

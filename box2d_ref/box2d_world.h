@@ -1,11 +1,11 @@
 // The reference: a Box2D 2.4 world built from a Scene and stepped the way the scene says.
 //
-// Fixed rotation unless the scene asks for rotation; continuous collision and sleeping off unless
-// asked for, so every step does comparable work; each body's mass set exactly from the scene. Box2D
-// pads every polygon with a skin of b2_polygonRadius (1 cm) and lets contacts rest about
-// b2_linearSlop (5 mm) deep into it, so boxes built at their declared size rest about 1.5 cm
-// apart. With compensation (the default) each polygon is built kSkinShrink smaller per side
-// and boxes rest where their declared faces meet.
+// Fixed rotation unless the scene asks for rotation; continuous collision against static and
+// kinematic bodies on, as Box2D ships it; sleeping off unless asked for; each body's mass set
+// exactly from the scene. Box2D pads every polygon with a skin of b2_polygonRadius (1 cm) and lets
+// contacts rest about b2_linearSlop (5 mm) deep into it, so boxes built at their declared size rest
+// about 1.5 cm apart. With compensation (the default) each polygon is built kSkinShrink smaller per
+// side and boxes rest where their declared faces meet.
 #pragma once
 
 #include "drive_schedule.h"
@@ -27,8 +27,10 @@ struct Box2dSettings {
   int substeps = 1;  // Box2D 2.4 has none of its own: each scene step is this many world steps
   bool compensate_skin = true;
   bool warm_starting = true;
-  bool continuous = false;  // continuous collision, every dynamic body a bullet
-  bool sleep = false;       // bodies at rest fall asleep, as games ship Box2D
+  // Continuous collision: 0 off; 1 dynamic bodies against static and kinematic ones (Box2D's
+  // own default); 2 every dynamic body a bullet, so also against other dynamic bodies.
+  int continuous = 1;
+  bool sleep = false;  // bodies at rest fall asleep, as games ship Box2D
 };
 
 class Box2dWorld {

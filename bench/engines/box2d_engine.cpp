@@ -19,7 +19,7 @@ Box2dSettings settings(const EngineSpec& spec) {
   s.substeps = static_cast<int>(spec.get_int("substeps"));
   s.compensate_skin = spec.get("skin") == "compensate";
   s.warm_starting = spec.get_int("warm") != 0;
-  s.continuous = spec.get_int("ccd") != 0;
+  s.continuous = static_cast<int>(spec.get_int("ccd"));
   s.sleep = spec.get_int("sleep") != 0;
   return s;
 }
@@ -56,7 +56,9 @@ EngineDef register_box2d() {
                        "compensate: polygons built 7.5 mm smaller per side so boxes rest at their "
                        "faces"),
             whole_key("warm", 1, 0, 1, "warm starting"),
-            whole_key("ccd", 0, 0, 1, "continuous collision, every dynamic body a bullet"),
+            whole_key("ccd", 1, 0, 2,
+                      "continuous collision: 0 off, 1 against static and kinematic bodies "
+                      "(Box2D's default), 2 every dynamic body a bullet"),
             whole_key("sleep", 0, 0, 1, "bodies at rest fall asleep, as games ship it")};
   e.capabilities = [](const EngineSpec&) { return Capabilities{true, true, true, true, true}; };
   e.counters = counter_list();

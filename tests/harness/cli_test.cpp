@@ -78,7 +78,7 @@ TEST(Cli, RunWritesTheDesignJsonAndNothingMovesAgainstAWall) {
   }
   ASSERT_EQ(j["comparison"].size(), 3u);
   EXPECT_EQ(j["comparison"][0]["reference"],
-            "box2d:vel_iters=8,pos_iters=3,substeps=1,skin=compensate,warm=1,ccd=0,sleep=0");
+            "box2d:vel_iters=8,pos_iters=3,substeps=1,skin=compensate,warm=1,ccd=1,sleep=0");
   EXPECT_LT(j["comparison"][0]["final_position_error"]["max"].get<double>(), 0.03);
 }
 

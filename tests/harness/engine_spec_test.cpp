@@ -11,10 +11,10 @@ TEST(EngineSpec, DefaultsAreFilledInCanonicalOrder) {
   EXPECT_EQ(parse_engine_spec("chain").str(),
             "chain:variant=modern,velocity=inelastic,passes=4,budget=64,depth=2048");
   EXPECT_EQ(parse_engine_spec("box2d").str(),
-            "box2d:vel_iters=8,pos_iters=3,substeps=1,skin=compensate,warm=1,ccd=0,sleep=0");
+            "box2d:vel_iters=8,pos_iters=3,substeps=1,skin=compensate,warm=1,ccd=1,sleep=0");
   // Given out of order, printed in canonical order.
   EXPECT_EQ(parse_engine_spec("box2d:substeps=2,vel_iters=4").str(),
-            "box2d:vel_iters=4,pos_iters=3,substeps=2,skin=compensate,warm=1,ccd=0,sleep=0");
+            "box2d:vel_iters=4,pos_iters=3,substeps=2,skin=compensate,warm=1,ccd=1,sleep=0");
 }
 
 TEST(EngineSpec, VelocityRuleDefaultsToEachVariantsOwn) {

@@ -21,7 +21,8 @@ void add_replay_command(CLI::App& app, int* status) {
   r->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
   r->add_option("--engines", args->engines,
                 "engine specs, comma separated; default: " + default_engine_list() +
-                    ", those that can run the scene");
+                    ", those that can run the scene")
+      ->check(kEngineList);
   r->add_option("--reference", args->reference,
                 "engine the chart measures the others from, or none; default: " +
                     default_reference().label());

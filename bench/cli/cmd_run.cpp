@@ -162,9 +162,11 @@ void add_run_command(CLI::App& app, int* status) {
   auto* file = run_app->add_option("--scene-file", args->scene_file, "scene file (JSON, schema 1)");
   scene->excludes(file);
   run_app->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
-  run_app->add_option("--engines", args->engines,
-                      "engine specs, comma separated (chainbench engines); default: " +
-                          default_engine_list() + ", those that can run the scene");
+  run_app
+      ->add_option("--engines", args->engines,
+                   "engine specs, comma separated (chainbench engines); default: " +
+                       default_engine_list() + ", those that can run the scene")
+      ->check(kEngineList);
   run_app->add_option(
       "--reference", args->reference,
       "engine the others are compared with, or none; default: " + default_reference().label());

@@ -124,7 +124,8 @@ void add_stress_command(CLI::App& app, int* status) {
       "stress", "The stiff and extreme cases, each in every engine, with verdicts");
   s->add_flag("--quick", args->quick, "the CI subset: one case of each kind, small");
   s->add_option("--engines", args->engines,
-                "engine specs, comma separated; default: " + default_engine_list());
+                "engine specs, comma separated; default: " + default_engine_list())
+      ->check(kEngineList);
   s->add_option("--filter", args->filter,
                 "run only the cases whose label contains one of these |-separated texts");
   s->add_option("--timeout", args->timeout, "seconds a case may take before it counts as a hang")

@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace chainbench {
 
 void add_list_commands(CLI::App& app, int* status);  // list, engines
@@ -12,5 +14,14 @@ void add_sweep_command(CLI::App& app, int* status);
 void add_stress_command(CLI::App& app, int* status);
 void add_replay_command(CLI::App& app, int* status);
 void add_merge_command(CLI::App& app, int* status);
+
+// --engines given empty is a mistake (a shell variable that expanded to nothing), not a request
+// for the defaults: those come from leaving the option out.
+inline const CLI::Validator kEngineList(
+    [](std::string& list) {
+      return list.empty() ? std::string("no engine named (leave --engines out for the defaults)")
+                          : std::string();
+    },
+    "ENGINES", "engine list");
 
 }  // namespace chainbench

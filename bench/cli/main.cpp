@@ -11,6 +11,7 @@
 
 #include <exception>
 #include <iostream>
+#include <string>
 
 int main(int argc, char** argv) {
   CLI::App app{"chainbench: collision chaining against rigid-body engines, in numbers"};
@@ -24,6 +25,20 @@ int main(int argc, char** argv) {
   chainbench::add_stress_command(app, &status);
   chainbench::add_replay_command(app, &status);
   chainbench::add_merge_command(app, &status);
+  // CLI11 would say only that a subcommand is required: name the word it did not know.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string known;
+    bool found = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      found = found || sub->check_name(argv[1]);
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!found) {
+      std::cerr << "chainbench: unknown command \"" << argv[1] << "\" (commands: " << known
+                << "; --help says more)\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -233,9 +233,24 @@ std::vector<EngineSpec> parse_engine_list(std::string_view text) {
       specs.push_back(token);
     }
   }
+  if (specs.empty()) throw InputError("engine list \"" + std::string(text) + "\": no engine");
   std::vector<EngineSpec> out;
-  for (const std::string& s : specs)
-    out.push_back(parse_engine_spec(s));
+  for (const std::string& s : specs) {
+    EngineSpec spec = parse_engine_spec(s);
+    // Rows, `met by` and --require name engines by label: two engines must not share one.
+    for (const EngineSpec& earlier : out) {
+      if (earlier.str() == spec.str()) {
+        throw InputError("engine list \"" + std::string(text) + "\": " + spec.label() +
+                         " given twice");
+      }
+      if (earlier.label() == spec.label()) {
+        throw InputError("engine list \"" + std::string(text) + "\": " + earlier.str() + " and " +
+                         spec.str() + " would both be labelled " + spec.label() +
+                         " (give the files different names)");
+      }
+    }
+    out.push_back(std::move(spec));
+  }
   return out;
 }
 

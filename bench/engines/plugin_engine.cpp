@@ -170,7 +170,8 @@ class PluginEngine final : public Engine {
     char error[512] = "";
     const int rc = plugin_.api->step(world_, error, sizeof error);
     if (rc < 0) {
-      throw InputError(describe(plugin_) + ": step " + std::to_string(step_index) +
+      // Counted from 1, as verdicts count "at step N": the state after N steps.
+      throw InputError(describe(plugin_) + ": step " + std::to_string(step_index + 1) +
                        " failed: " + (error[0] ? std::string(error) : "it gave no reason"));
     }
     degraded_ = rc == 1;

@@ -65,11 +65,20 @@ Scene make_scene(std::string_view name, const std::vector<std::string>& sets) {
   SceneParams values;
   for (const SceneParam& p : params)
     values.set(p.key, p.value);
-  for (const std::string& kv : sets) {
+  for (auto it = sets.begin(); it != sets.end(); ++it) {
+    const std::string& kv = *it;
     const std::size_t eq = kv.find('=');
     if (eq == std::string::npos || eq == 0)
       throw InputError("--set \"" + kv + "\": expected KEY=VALUE");
     const std::string key = kv.substr(0, eq);
+    // One value per key, as in a scene file: a second one is a typo more often than an intent.
+    const auto again = std::find_if(sets.begin(), it, [&](const std::string& earlier) {
+      return earlier.compare(0, key.size() + 1, key + "=") == 0;
+    });
+    if (again != it) {
+      throw InputError("--set " + key + ": given twice (\"" + *again + "\", then \"" + kv + "\")" +
+                       (key == "steps" ? "; --steps sets it too" : ""));
+    }
     const auto p = std::find_if(params.begin(), params.end(),
                                 [&](const SceneParam& q) { return q.key == key; });
     if (p == params.end()) {

@@ -157,7 +157,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"replay --scene random_pile --set n=100000 --out /tmp/x.html",
                 "more than a page holds"},
         BadCall{"merge /nonexistent/part.json", "/nonexistent/part.json: cannot read"},
-        BadCall{"merge /tmp", "/tmp: is a directory"}, BadCall{"frobnicate", "subcommand"}),
+        BadCall{"merge /tmp", "/tmp: is a directory"},
+        BadCall{"frobnicate", "unknown command \"frobnicate\""},
+        BadCall{"run --scene stack --engines ''", "no engine"},
+        BadCall{"run --scene stack --engines chain,chain", "chain given twice"},
+        BadCall{"run --scene stack --set n=5 --set n=6", "--set n: given twice"},
+        BadCall{"run --scene stack --set steps=5 --steps 6", "--steps sets it too"}),
     [](const auto& info) { return "Case" + std::to_string(info.index); });
 
 TEST_P(RefusedCall, ExitsWithStatusTwoAndSaysWhy) {

@@ -103,7 +103,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Fault{"null_function", "leaves a required function null"},
                       Fault{"bad_counter", "counter 0 has no valid name"},
                       Fault{"create", "could not build scene flight: this plugin builds no worlds"},
-                      Fault{"step", "step 2 failed: the solver diverged"},
+                      Fault{"step", "step 3 failed: the solver diverged"},
                       Fault{"count", "its world holds 4 bodies, the scene 3"},
                       Fault{"nan", "returned a non-finite state for body ball"},
                       Fault{"velocity", "refused to set the velocity of body cart at step 0"}),

@@ -36,9 +36,9 @@ class ChainResolver {
  public:
   void resolve(StepContext& ctx);
   // The last step's dynamic bodies in the order it first reached them, and the number of jumps
-  // back in memory on the way (see ChainState::reach_order).
+  // in memory on the way (see ChainState::reach_order).
   std::span<const std::uint32_t> reach_order() const { return state_.reach_order(); }
-  std::size_t reach_descents() const { return state_.reach_descents(); }
+  std::size_t reach_jumps() const { return state_.reach_jumps(); }
   // The slots were renumbered: forgets every per-body mark and the near pairs.
   void forget_slots();
 

@@ -225,7 +225,7 @@ void World::step(double dt) {
   }
   if (modern) {
     const std::span<const std::uint32_t> order =
-        w.layout.plan(w.bodies, w.modern.reach_order(), w.modern.reach_descents());
+        w.layout.plan(w.bodies, w.modern.reach_order(), w.modern.reach_jumps());
     if (!order.empty()) {
       w.renumber(order);
       w.stats.renumbered = 1;

@@ -97,6 +97,11 @@ class ChainResolver {
   std::vector<Frame> stack_;
   std::vector<std::uint32_t> cands_;
   std::vector<std::uint32_t> found_;  // one suspect body's overlaps
+  // With workers: contacts found per block of kBlock bodies, each block's from the start of its
+  // bodies' near lists on.
+  static constexpr std::uint32_t kBlock = 2048;
+  std::vector<Pair> found_pairs_;
+  std::vector<std::uint32_t> block_found_;
   // The near pairs are scanned again once more than one body in this many was filed again since.
   static constexpr std::uint32_t kRescanShare = 8;
   Frame last_{};                       // the result of the last frame that finished without opening

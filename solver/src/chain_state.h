@@ -65,6 +65,8 @@ class ChainState {
     m.support_dir[axis] = static_cast<std::int8_t>(direction);
     m.support_anchor = anchor;
   }
+  // Where near(body) starts among all the near lists, which lie end to end in slot order.
+  std::uint32_t near_offset(std::uint32_t body) const { return near_start_[body]; }
   // The bodies that were near `body` when the near pairs were last taken.
   std::span<const std::uint32_t> near(std::uint32_t body) const {
     return {near_.data() + near_start_[body], near_.data() + near_start_[body + 1]};

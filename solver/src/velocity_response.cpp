@@ -15,7 +15,11 @@ std::uint32_t VelocityResponse::Groups::find(std::uint32_t i) {
 
 void VelocityResponse::apply(Bodies& bodies, double restitution_threshold, WorkerPool& pool) {
   if (links_.empty()) return;
-  if (pool.threads() == 1) {
+  // A world at rest pushes along one axis only: the workers would wake for nothing.
+  const bool both =
+      std::any_of(links_.begin(), links_.end(), [](const Link& l) { return l.axis == 0; }) &&
+      std::any_of(links_.begin(), links_.end(), [](const Link& l) { return l.axis == 1; });
+  if (pool.threads() == 1 || !both) {
     apply_axis(bodies, 0, restitution_threshold, groups_[0]);
     apply_axis(bodies, 1, restitution_threshold, groups_[0]);
     return;

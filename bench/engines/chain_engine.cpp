@@ -32,6 +32,7 @@ chain::WorldDef world_def(const EngineSpec& spec, const Scene& scene) {
   def.max_passes = static_cast<int>(spec.get_int("passes"));
   def.budget_per_body = static_cast<int>(spec.get_int("budget"));
   def.seed_max_depth = static_cast<int>(spec.get_int("depth"));
+  def.threads = static_cast<int>(spec.get_int("threads"));
   return def;
 }
 
@@ -133,9 +134,12 @@ EngineDef register_chain() {
   velocity.default_when = {{"seed2014", "zero"}};
   e.keys = {choice_key("variant", "modern", {"modern", "seed2014"},
                        "modern: chaining done right; seed2014: the 2014 engine, quirks included"),
-            velocity, whole_key("passes", 4, 1, 1000, "modern: contact sweeps per step, at most"),
+            velocity,
+            whole_key("passes", 4, 1, 1000, "modern: contact sweeps per step, at most"),
             whole_key("budget", 64, 1, 1000000, "pair resolutions per body per step (+1024)"),
-            whole_key("depth", 2048, 1, 16384, "seed2014: recursion depth limit")};
+            whole_key("depth", 2048, 1, 16384, "seed2014: recursion depth limit"),
+            whole_key("threads", 1, 1, chain::kMaxThreads,
+                      "threads a step runs on, the caller's included (same bits for any count)")};
   e.capabilities = [](const EngineSpec& spec) {
     Capabilities c;
     c.kinematic = true;

@@ -153,7 +153,9 @@ void Broadphase::refile(std::uint32_t body, double x, double y) {
   } else {
     in_overlay_[body] = 1;
     members_.push_back(body);
-    level.entries[entry_of_[body]].out = 1;
+    // Until build() runs after a configure() or renumber(), entry_of_ names the entries of the old
+    // slots (of another level, maybe): nothing reads them before build() files every body anew.
+    if (built()) level.entries[entry_of_[body]].out = 1;
   }
   if (epoch_of_[body] <= scan_) ++stale_;
   epoch_of_[body] = scan_ + 1;

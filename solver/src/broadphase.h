@@ -56,6 +56,18 @@ class Broadphase {
     if (d > refile_) [[unlikely]]
       refile(body, x, y);
   }
+  // note_move() for bodies moved at once in blocks: distance() reads, and once the blocks are
+  // done, note_moves() takes the largest distance of them all and the bodies further than
+  // refile_distance(), in slot order. The same as note_move() for each body in slot order.
+  double distance(std::uint32_t body, double x, double y) const {
+    const Point& r = ref_[body];
+    return std::max(std::abs(x - r.x), std::abs(y - r.y));
+  }
+  void note_moves(const Bodies& bodies, double largest, std::span<const std::uint32_t> far) {
+    margin_ = std::max(margin_, std::min(largest, refile_));
+    for (const std::uint32_t i : far)
+      refile(i, bodies.x(i), bodies.y(i));
+  }
   // True while no body was filed again since the near pairs were last scanned: every pair that
   // can overlap now is a near pair of that scan (each body has moved at most refile_distance(),
   // a quarter of the slack, from where the scan saw it).

@@ -36,9 +36,9 @@ class ChainResolver {
  public:
   void resolve(StepContext& ctx);
   // The last step's dynamic bodies in the order it first reached them, and the number of jumps
-  // back in memory on the way (see ChainState::reach_order).
+  // in memory on the way (see ChainState::reach_order).
   std::span<const std::uint32_t> reach_order() const { return state_.reach_order(); }
-  std::size_t reach_descents() const { return state_.reach_descents(); }
+  std::size_t reach_jumps() const { return state_.reach_jumps(); }
   // The slots were renumbered: forgets every per-body mark and the near pairs.
   void forget_slots();
 
@@ -97,6 +97,11 @@ class ChainResolver {
   std::vector<Frame> stack_;
   std::vector<std::uint32_t> cands_;
   std::vector<std::uint32_t> found_;  // one suspect body's overlaps
+  // With workers: contacts found per block of kBlock bodies, each block's from the start of its
+  // bodies' near lists on.
+  static constexpr std::uint32_t kBlock = 2048;
+  std::vector<Pair> found_pairs_;
+  std::vector<std::uint32_t> block_found_;
   // The near pairs are scanned again once more than one body in this many was filed again since.
   static constexpr std::uint32_t kRescanShare = 8;
   Frame last_{};                       // the result of the last frame that finished without opening

@@ -26,7 +26,7 @@ void ChainState::begin_step(StepContext& ctx) {
     step_ = 1;
   }
   reach_order_.clear();
-  reach_descents_ = 0;
+  reach_jumps_ = 0;
   leftover = false;
 }
 
@@ -36,7 +36,7 @@ void ChainState::forget_slots() {
   suspect_stamp_ = 1;
   suspects_.clear();
   reach_order_.clear();
-  reach_descents_ = 0;
+  reach_jumps_ = 0;
 }
 
 void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near_pairs) {

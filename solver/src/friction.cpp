@@ -10,6 +10,17 @@ constexpr std::uint32_t kUnreached = 0xffffffffu;
 
 }  // namespace
 
+bool Friction::slides(const Bodies& bodies, const Link& l) {
+  const int t = 1 - l.axis;
+  const double* v = t == 0 ? bodies.vx.data() : bodies.vy.data();
+  const std::uint8_t held = t == 0 ? kDriveX : kDriveY;
+  const bool free_a = !bodies.immovable(l.a) && !(bodies.driven[l.a] & held);
+  const bool free_b = !bodies.immovable(l.b) && !(bodies.driven[l.b] & held);
+  if (!free_a && !free_b) return false;  // nothing friction may change
+  // Equal velocities give a zero impulse, which still turns a's -0 into +0.
+  return v[l.a] != v[l.b] || (v[l.a] == 0.0 && std::signbit(v[l.a]));
+}
+
 void Friction::number_bodies(const Bodies& bodies, const std::vector<Link>& links) {
   if (local_.size() != bodies.size()) {
     local_.assign(bodies.size(), 0);
@@ -136,8 +147,9 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
   bool any = false;
   for (std::size_t k = 0; k < n_links; ++k) {
     limit_[k] = std::sqrt(bodies.friction[links[k].a] * bodies.friction[links[k].b]);
-    any = any || limit_[k] > 0.0;
+    any = any || (limit_[k] > 0.0 && slides(bodies, links[k]));
   }
+  // No rough contact slides: every impulse of the solve would be zero and change no bit.
   if (!any) return;
   number_bodies(bodies, links);
   // Both axes' normal impulses come from the velocities the velocity rule left, before any
@@ -160,6 +172,9 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
     return 1.0 / bodies.mass[slot];
   };
   for (int iteration = 0; iteration < kIterations; ++iteration) {
+    // An iteration that applies no impulse leaves every velocity as the next one finds it (but
+    // for -0 turned +0, which that iteration did already): the rest would apply none either.
+    bool changed = false;
     for (const std::uint32_t k : active_) {
       const Link& l = links[k];
       const int t = 1 - l.axis;
@@ -172,7 +187,9 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
       applied_[k] = total;
       v[l.a] += impulse * inv_a;
       v[l.b] -= impulse * inv_b;
+      changed = changed || impulse != 0.0;
     }
+    if (!changed) break;
   }
   for (std::size_t u = 0; u < bodies_.size(); ++u) {
     const std::uint32_t slot = bodies_[u];

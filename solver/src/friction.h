@@ -1,8 +1,8 @@
 // Coulomb friction for the modern variant, after the velocity rule.
 //
 // Every push of the step is a contact along its axis (the normal); friction acts along the other
-// axis, with the coefficient sqrt(fa * fb) (the geometric mean rigid-body engines commonly use), bounded by mu times the
-// contact's normal impulse.
+// axis, with the coefficient sqrt(fa * fb) (the geometric mean rigid-body engines commonly use),
+// bounded by mu times the contact's normal impulse.
 //
 // The normal impulse. Push-out leaves no forces behind, only velocity changes, so a contact's
 // normal impulse is the momentum the step took out of the bodies it holds up: each dynamic body's
@@ -43,6 +43,9 @@ class Friction {
   // acceleration, and more change the result by less than a millimetre per second.
   static constexpr int kIterations = 8;
 
+  // True unless the solve would leave the link's bodies as they are: no tangential relative
+  // velocity, or no body it may change (immovable, or driven along the tangent).
+  static bool slides(const Bodies& bodies, const Link& l);
   // Numbers the dynamic bodies the links touch (local_ of a slot, bodies_ of a number).
   void number_bodies(const Bodies& bodies, const std::vector<Link>& links);
   // Fills normal_ for the links along axis.

@@ -6,9 +6,11 @@
 namespace chain::detail {
 namespace {
 
-// Renumber once more than one body in this many was reached after a body of a higher slot. A
-// pile in Z-order has about one in six; the order a resting pile was renumbered in, none.
-constexpr std::size_t kDescentShare = 16;
+// Renumber once more than one body in this many was reached by a jump in memory. A pile in
+// Z-order has about one in six jumps back; a layer-by-layer walk over Z-ordered pyramids or stacks
+// jumps forward over the other layers at most bodies; the order a resting pile was renumbered in
+// has none.
+constexpr std::size_t kJumpShare = 16;
 
 }  // namespace
 
@@ -20,8 +22,8 @@ void Layout::reset(std::size_t bodies) {
 
 std::span<const std::uint32_t> Layout::plan(const Bodies& bodies,
                                             std::span<const std::uint32_t> reached,
-                                            std::size_t descents) {
-  if (++steps_since_ < kMinSteps || descents * kDescentShare <= bodies.size()) return {};
+                                            std::size_t jumps) {
+  if (++steps_since_ < kMinSteps || jumps * kJumpShare <= bodies.size()) return {};
   steps_since_ = 0;
   // The reached bodies in the order reached, the other dynamic bodies as they were, and the
   // immovable ones where they are (slot ranges by kind hold).

@@ -27,11 +27,11 @@ class Layout {
   // the body set changes. It does not restart the count of steps since the last renumbering, so
   // a world whose body set changes every step is still renumbered at most once in 32 steps.
   void reset(std::size_t bodies);
-  // After a step that first reached the dynamic bodies `reached` in that order, with `descents`
-  // jumps back to a lower slot: the order to renumber the slots in (slot i takes the body of
-  // slot order[i]), or empty when the layout is good enough.
+  // After a step that first reached the dynamic bodies `reached` in that order, with `jumps`
+  // jumps in memory (ChainState::reach_jumps): the order to renumber the slots in (slot i takes
+  // the body of slot order[i]), or empty when the layout is good enough.
   std::span<const std::uint32_t> plan(const Bodies& bodies, std::span<const std::uint32_t> reached,
-                                      std::size_t descents);
+                                      std::size_t jumps);
   Bodies::Spare& spare() { return spare_; }
 
  private:

@@ -9,9 +9,10 @@ namespace chain::detail {
 // is read once and written once: the arrays are separate vectors, which the compiler must assume
 // may alias each other and the vectors' own bookkeeping, so anything else reloads them all on
 // every body.
-template <bool kDynamic, bool kFindFast, bool kKeepVelocities>
+template <bool kDynamic, bool kFindFast, bool kKeepVelocities, bool kBlocks>
 void Motion::integrate_range(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt,
-                             std::uint32_t begin, std::uint32_t end) {
+                             std::uint32_t begin, std::uint32_t end, std::uint32_t out,
+                             Notes& notes) {
   constexpr double share = kDynamic ? kFastDynamicShare : kFastKinematicShare;
   double* const vel_x = b.vx.data();
   double* const vel_y = b.vy.data();
@@ -22,8 +23,11 @@ void Motion::integrate_range(Bodies& b, Broadphase& broadphase, Vec2 gravity, do
   Bodies::Box* const boxes = b.box.data();
   Point* const start = b.start.data();
   Point* const pre = pre_velocity.data();
-  std::uint32_t* const fast_out = fast_.data();
-  std::size_t count = fast_count_;
+  std::uint32_t* const fast_out = fast_.data() + out;
+  std::uint32_t* const far_out = kBlocks ? far_.data() + out : nullptr;
+  std::uint32_t count = notes.fast, far = notes.far;
+  double largest = notes.largest;
+  const double refile = broadphase.refile_distance();
   for (std::uint32_t i = begin; i < end; ++i) {
     double vx = vel_x[i], vy = vel_y[i];
     if (const std::uint8_t held = driven[i]; held != 0) {
@@ -43,37 +47,79 @@ void Motion::integrate_range(Bodies& b, Broadphase& broadphase, Vec2 gravity, do
     box.center[0] = x1;
     box.center[1] = y1;
     start[i] = {x0, y0};
-    broadphase.note_move(i, x1, y1);
+    if constexpr (kBlocks) {  // the broadphase is shared: noted once every block is done
+      const double d = broadphase.distance(i, x1, y1);
+      largest = std::max(largest, d);
+      if (d > refile) [[unlikely]]
+        far_out[far++] = i;
+    } else {
+      broadphase.note_move(i, x1, y1);
+    }
     if constexpr (kFindFast) {
       const double dx = std::abs(x1 - x0), dy = std::abs(y1 - y0);
       if (dx > share * box.half[0] || dy > share * box.half[1]) fast_out[count++] = i;
     }
   }
-  fast_count_ = count;
+  notes = {count, far, largest};
 }
 
 template <bool kFindFast, bool kKeepVelocities>
-void Motion::integrate_all(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt) {
-  integrate_range<true, kFindFast, kKeepVelocities>(b, broadphase, gravity, dt, 0, b.dynamic_end);
-  integrate_range<false, kFindFast, kKeepVelocities>(b, broadphase, gravity, dt, b.dynamic_end,
-                                                     b.movable_end);
+void Motion::integrate_all(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt,
+                           WorkerPool& pool) {
+  const std::uint32_t dynamic_end = b.dynamic_end, movable_end = b.movable_end;
+  if (pool.threads() == 1 || movable_end <= kBlock) {
+    Notes notes;
+    integrate_range<true, kFindFast, kKeepVelocities, false>(b, broadphase, gravity, dt, 0,
+                                                             dynamic_end, 0, notes);
+    integrate_range<false, kFindFast, kKeepVelocities, false>(b, broadphase, gravity, dt,
+                                                              dynamic_end, movable_end, 0, notes);
+    fast_count_ = notes.fast;
+    return;
+  }
+  if (far_.size() < movable_end) far_.resize(movable_end);
+  const std::uint32_t blocks = (movable_end + kBlock - 1) / kBlock;
+  if (notes_.size() < blocks) notes_.resize(blocks);
+  pool.run(blocks, [&](std::uint32_t k) {
+    const std::uint32_t begin = k * kBlock, end = std::min(movable_end, begin + kBlock);
+    Notes& notes = notes_[k];
+    notes = Notes{};
+    const std::uint32_t split = std::clamp(dynamic_end, begin, end);
+    integrate_range<true, kFindFast, kKeepVelocities, true>(b, broadphase, gravity, dt, begin,
+                                                            split, begin, notes);
+    integrate_range<false, kFindFast, kKeepVelocities, true>(b, broadphase, gravity, dt, split, end,
+                                                             begin, notes);
+  });
+  // Each block's lists, moved down to follow the blocks before it: slot order, as one thread.
+  double largest = 0.0;
+  std::uint32_t fast = 0, far = 0;
+  for (std::uint32_t k = 0; k < blocks; ++k) {
+    const Notes& notes = notes_[k];
+    const std::uint32_t begin = k * kBlock;
+    std::copy_n(fast_.begin() + begin, notes.fast, fast_.begin() + fast);
+    std::copy_n(far_.begin() + begin, notes.far, far_.begin() + far);
+    fast += notes.fast;
+    far += notes.far;
+    largest = std::max(largest, notes.largest);
+  }
+  fast_count_ = fast;
+  broadphase.note_moves(b, largest, {far_.data(), far});
 }
 
 void Motion::integrate(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt, bool find_fast,
-                       bool keep_velocities) {
+                       bool keep_velocities, WorkerPool& pool) {
   fast_count_ = 0;
   if (fast_.size() < b.movable_end) fast_.resize(b.movable_end);
   if (keep_velocities && pre_velocity.size() < b.dynamic_end) pre_velocity.resize(b.dynamic_end);
   if (find_fast) {
     if (keep_velocities) {
-      integrate_all<true, true>(b, broadphase, gravity, dt);
+      integrate_all<true, true>(b, broadphase, gravity, dt, pool);
     } else {
-      integrate_all<true, false>(b, broadphase, gravity, dt);
+      integrate_all<true, false>(b, broadphase, gravity, dt, pool);
     }
   } else if (keep_velocities) {
-    integrate_all<false, true>(b, broadphase, gravity, dt);
+    integrate_all<false, true>(b, broadphase, gravity, dt, pool);
   } else {
-    integrate_all<false, false>(b, broadphase, gravity, dt);
+    integrate_all<false, false>(b, broadphase, gravity, dt, pool);
   }
 }
 

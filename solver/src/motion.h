@@ -6,6 +6,7 @@
 
 #include "bodies.h"
 #include "broadphase.h"
+#include "worker_pool.h"
 
 #include <chain/types.h>
 
@@ -33,18 +34,31 @@ struct Motion {
 
   // Applies drives and gravity to velocities, moves every movable body by velocity * dt, records
   // start positions (and, as asked, the fast bodies and the velocities), and notes every move.
+  // With workers, blocks of kBlock bodies are integrated at once and their notes combined in
+  // block order: the same bits as one thread.
   void integrate(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt, bool find_fast,
-                 bool keep_velocities);
+                 bool keep_velocities, WorkerPool& pool);
+
+  static constexpr std::uint32_t kBlock = 2048;
 
  private:
-  template <bool kDynamic, bool kFindFast, bool kKeepVelocities>
+  // What integrating a block found: fast bodies and bodies to file again, written from the
+  // block's first slot on in fast_ and far_ (one thread), and the largest move from a filed place.
+  struct Notes {
+    std::uint32_t fast = 0, far = 0;
+    double largest = 0.0;
+  };
+  template <bool kDynamic, bool kFindFast, bool kKeepVelocities, bool kBlocks>
   void integrate_range(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt,
-                       std::uint32_t begin, std::uint32_t end);
+                       std::uint32_t begin, std::uint32_t end, std::uint32_t out, Notes& notes);
   template <bool kFindFast, bool kKeepVelocities>
-  void integrate_all(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt);
+  void integrate_all(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt,
+                     WorkerPool& pool);
 
   std::vector<std::uint32_t> fast_;  // room for every movable slot; the first fast_count_ count
   std::size_t fast_count_ = 0;
+  std::vector<std::uint32_t> far_;  // with workers: room for every movable slot
+  std::vector<Notes> notes_;        // with workers: per block
 };
 
 }  // namespace chain::detail

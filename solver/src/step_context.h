@@ -5,6 +5,7 @@
 #include "broadphase.h"
 #include "motion.h"
 #include "velocity_response.h"
+#include "worker_pool.h"
 
 #include <chain/types.h>
 #include <chain/world.h>
@@ -42,6 +43,7 @@ struct StepContext {
   bool record_links;     // pushes are recorded for the inelastic rule or friction
   // Modern: no move takes a body past the centre of a body in its way (see limit_move).
   bool guard_moves;
+  WorkerPool& pool;  // for the parts of the step that split into independent blocks
 
   double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
 

@@ -76,6 +76,9 @@ std::string validate(const WorldDef& def) {
   if (def.max_passes < 1 || def.max_passes > 1000) {
     return "max_passes must be in [1, 1000], got " + std::to_string(def.max_passes);
   }
+  if (def.threads < 1 || def.threads > kMaxThreads) {
+    return "threads must be in [1, 256], got " + std::to_string(def.threads);
+  }
   if (def.budget_per_body < 1 || def.budget_per_body > 1000000) {
     return "budget_per_body must be in [1, 1000000], got " + std::to_string(def.budget_per_body);
   }

@@ -5,7 +5,7 @@
 
 namespace chain::detail {
 
-std::uint32_t VelocityResponse::find(std::uint32_t i) {
+std::uint32_t VelocityResponse::Groups::find(std::uint32_t i) {
   while (parent_[i] != i) {
     parent_[i] = parent_[parent_[i]];  // path halving
     i = parent_[i];
@@ -13,13 +13,27 @@ std::uint32_t VelocityResponse::find(std::uint32_t i) {
   return i;
 }
 
-void VelocityResponse::apply(Bodies& bodies, double restitution_threshold) {
+void VelocityResponse::apply(Bodies& bodies, double restitution_threshold, WorkerPool& pool) {
   if (links_.empty()) return;
-  apply_axis(bodies, 0, restitution_threshold);
-  apply_axis(bodies, 1, restitution_threshold);
+  // A world at rest pushes along one axis only: the workers would wake for nothing.
+  const bool both =
+      std::any_of(links_.begin(), links_.end(), [](const Link& l) { return l.axis == 0; }) &&
+      std::any_of(links_.begin(), links_.end(), [](const Link& l) { return l.axis == 1; });
+  if (pool.threads() == 1 || !both) {
+    apply_axis(bodies, 0, restitution_threshold, groups_[0]);
+    apply_axis(bodies, 1, restitution_threshold, groups_[0]);
+    return;
+  }
+  pool.run(2, [&](std::uint32_t axis) {
+    apply_axis(bodies, static_cast<int>(axis), restitution_threshold, groups_[axis]);
+  });
 }
 
-void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_threshold) {
+void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_threshold,
+                                  Groups& g) const {
+  auto& [parent_, root_, member_, mass_, momentum_, anchor_sum_, restitution_, spread_,
+         anchor_count_] = g;
+  auto find = [&g](std::uint32_t i) { return g.find(i); };
   if (std::none_of(links_.begin(), links_.end(), [axis](const Link& l) { return l.axis == axis; }))
     return;
   const std::uint32_t n = bodies.dynamic_end;

@@ -9,6 +9,7 @@
 #pragma once
 
 #include "bodies.h"
+#include "worker_pool.h"
 
 #include <cstdint>
 #include <vector>
@@ -26,7 +27,9 @@ class VelocityResponse {
     links_.push_back(
         {a, b, static_cast<std::uint8_t>(axis), sign > 0.0 ? std::int8_t{1} : std::int8_t{-1}});
   }
-  void apply(Bodies& bodies, double restitution_threshold);
+  // The axes are independent (each reads and writes its own velocity component): with workers,
+  // they run at once, each in buffers of its own.
+  void apply(Bodies& bodies, double restitution_threshold, WorkerPool& pool);
 
   struct Link {  // a was pushed out of b along axis, in direction sign
     std::uint32_t a, b;
@@ -37,14 +40,18 @@ class VelocityResponse {
   const std::vector<Link>& links() const { return links_; }
 
  private:
-  void apply_axis(Bodies& bodies, int axis, double restitution_threshold);
-  std::uint32_t find(std::uint32_t i);
+  // Per dynamic slot: the groups of one axis.
+  struct Groups {
+    std::vector<std::uint32_t> parent_, root_;
+    std::vector<std::uint8_t> member_;
+    std::vector<double> mass_, momentum_, anchor_sum_, restitution_, spread_;
+    std::vector<std::uint32_t> anchor_count_;
+    std::uint32_t find(std::uint32_t i);
+  };
+  void apply_axis(Bodies& bodies, int axis, double restitution_threshold, Groups& g) const;
 
   std::vector<Link> links_;
-  std::vector<std::uint32_t> parent_, root_;
-  std::vector<std::uint8_t> member_;
-  std::vector<double> mass_, momentum_, anchor_sum_, restitution_, spread_;
-  std::vector<std::uint32_t> anchor_count_;
+  Groups groups_[2];  // one for both axes in turn, or one each when they run at once
 };
 
 }  // namespace chain::detail

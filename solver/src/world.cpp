@@ -10,6 +10,7 @@
 #include "step_context.h"
 #include "validate.h"
 #include "velocity_response.h"
+#include "worker_pool.h"
 
 #include <algorithm>
 #include <cmath>
@@ -41,6 +42,7 @@ struct World::Impl {
   StepStats stats;
   std::vector<detail::CrushRecord> crush_records;
   std::vector<CrushEvent> crushes;
+  detail::WorkerPool pool;  // def.threads - 1 workers
 
   std::uint32_t slot(BodyId id) const {
     if (id.value >= slot_of_id.size() || slot_of_id[id.value] == detail::kNoSlot) {
@@ -79,6 +81,7 @@ struct World::Impl {
 World::World(const WorldDef& def) : impl_(std::make_unique<Impl>()) {
   if (std::string e = validate(def); !e.empty()) throw std::invalid_argument("WorldDef: " + e);
   impl_->def = def;
+  impl_->pool.reset(def.threads);
 }
 
 World::~World() = default;
@@ -198,21 +201,21 @@ void World::step(double dt) {
   const std::uint64_t examined = w.broadphase.examined();
   const bool modern = w.def.variant == Variant::kModern;
   const bool rough = modern && w.rough_bodies > 0;
-  w.motion.integrate(w.bodies, w.broadphase, w.def.gravity, dt, modern, rough);
+  w.motion.integrate(w.bodies, w.broadphase, w.def.gravity, dt, modern, rough, w.pool);
   const std::uint64_t budget =
       static_cast<std::uint64_t>(w.def.budget_per_body) * w.bodies.size() + 1024u;
   detail::StepContext ctx{
       w.bodies, w.broadphase, w.response,
       w.def,    w.stats,      w.crush_records,
       budget,   w.motion,     w.def.velocity_rule == VelocityRule::kInelastic || rough,
-      modern};
+      modern,   w.pool};
   if (modern) {
     w.modern.resolve(ctx);
   } else {
     w.seed2014.resolve(ctx, w.creation_order);
   }
   if (w.def.velocity_rule == VelocityRule::kInelastic) {
-    w.response.apply(w.bodies, w.def.restitution_threshold);
+    w.response.apply(w.bodies, w.def.restitution_threshold, w.pool);
   }
   if (rough)
     w.friction.apply(w.bodies, w.broadphase, w.response.links(), w.motion.pre_velocity, dt);
@@ -225,7 +228,7 @@ void World::step(double dt) {
   }
   if (modern) {
     const std::span<const std::uint32_t> order =
-        w.layout.plan(w.bodies, w.modern.reach_order(), w.modern.reach_descents());
+        w.layout.plan(w.bodies, w.modern.reach_order(), w.modern.reach_jumps());
     if (!order.empty()) {
       w.renumber(order);
       w.stats.renumbered = 1;

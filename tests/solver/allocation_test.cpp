@@ -134,6 +134,23 @@ TEST(Allocation, WarmedUpStepsAllocateNothing) {
   }
 }
 
+// With worker threads, the blocks of bodies they take and their notes live in buffers sized
+// once: a busy scene with a wall of 6,000 boxes beside it (several blocks) allocates nothing.
+TEST(Allocation, ThreadedStepsAllocateNothing) {
+  WorldDef def = world_def(Variant::kModern, VelocityRule::kInelastic);
+  def.threads = 3;
+  World w(def);
+  build_busy_scene(w);
+  w.create_body(static_box(500.0, -1.0, 400.0, 1.0));
+  for (int c = 0; c < 600; ++c) {
+    for (int k = 0; k < 10; ++k)
+      w.create_body(dynamic_box(200.0 + c, 0.5 + k));
+  }
+  allocations_during(w, 30);
+  EXPECT_EQ(allocations_during(w, 120), 0);
+  EXPECT_GT(w.last_step_stats().resolve_calls, 6000u);
+}
+
 // Columns of boxes, half of them on a lift that goes up and down: the order in which the
 // modern solver reaches the boxes changes with the lift, and it renumbers them into the new order
 // every few dozen steps, long after the warm-up.

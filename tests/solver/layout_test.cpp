@@ -70,6 +70,32 @@ TEST(Layout, RestingPileIsRenumberedOnceAndNothingMoves) {
   }
 }
 
+// A wall of equal columns: a Z-order of it lists the boxes of each layer in slot order, so a step
+// that settles it a layer at a time never goes back in memory, but skips forward over the other
+// layers at nearly every box (each layer a sweep over all of memory). That walk is renumbered
+// too, once, and the wall stands exactly where it was built.
+TEST(Layout, LayerWalkThatOnlySkipsForwardIsRenumbered) {
+  std::vector<BodyDef> defs{static_box(0.0, -1.0, 100.0, 1.0)};
+  for (int c = 0; c < 64; ++c) {
+    for (int k = 0; k < 10; ++k)
+      defs.push_back(dynamic_box(static_cast<double>(c) - 32.0, 0.5 + k));
+  }
+  World w(world_def(Variant::kModern, VelocityRule::kInelastic));
+  const std::vector<BodyId> ids = create_all(w, defs);
+  w.step(kDt);
+  ASSERT_EQ(w.last_step_stats().renumbered, 1u);
+  int renumbered = 0;
+  for (int s = 0; s < 100; ++s) {
+    w.step(kDt);
+    renumbered += static_cast<int>(w.last_step_stats().renumbered);
+  }
+  EXPECT_EQ(renumbered, 0);  // walked front to back from then on
+  for (std::size_t k = 1; k < defs.size(); ++k) {
+    EXPECT_EQ(w.position(ids[k]).x, defs[k].center.x) << "box " << k;
+    EXPECT_EQ(w.position(ids[k]).y, defs[k].center.y) << "box " << k;
+  }
+}
+
 // Bodies no chain reaches move to the end of the order when the pile is renumbered, behind it:
 // flying free they must keep their own velocity, drive, gravity scale and mass. Their paths are
 // known exactly (semi-implicit Euler: v += g dt, then x += v dt), and two of them meet in the air

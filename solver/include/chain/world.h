@@ -62,6 +62,7 @@ inline constexpr double kMaxSpeed = 1.0e6;       // |velocity| components, m/s
 inline constexpr double kMaxMass = 1.0e18;       // kg
 inline constexpr double kMaxGravity = 1.0e6;     // |gravity| components, m/s^2
 inline constexpr double kMaxFriction = 1.0e6;    // friction coefficient, dimensionless
+inline constexpr int kMaxThreads = 256;          // WorldDef::threads
 
 // A body to add. World::create_body refuses (std::invalid_argument) a definition for which
 // validate() is not empty; the limits are given per field.
@@ -109,6 +110,11 @@ struct WorldDef {
   double touch_tolerance = 1.0e-9;
   // Inelastic rule: closing speeds below this do not bounce (m/s), in [0, 1e6].
   double restitution_threshold = 1.0;
+  // Threads a step runs on, the caller's included, in [1, kMaxThreads]. The parts of a step that
+  // split into independent blocks of bodies (contact gathering, integration, the two axes of the
+  // velocity rule) are spread over them; every count gives the same bits. The workers start with
+  // the world (and with each copy of it); a step allocates nothing for them.
+  int threads = 1;
 };
 
 // Empty when `def` can be added to a world; otherwise the reason, naming the field. No throw

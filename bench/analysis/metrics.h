@@ -73,7 +73,9 @@ class MetricsRecorder {
  public:
   MetricsRecorder(const Scene& scene, MetricSelection selection);
   // Call after every step with the state before and after it and the step's number (1 for the
-  // first step). Fills step_displacement() and step_penetration() (per body, this step) when
+  // first step); `before` is the `after` of the previous call (or the initial state). A step in
+  // which nothing moved costs one pass over the state: what it would compute is what the step
+  // before left. Fills step_displacement() and step_penetration() (per body, this step) when
   // `per_body` is true, and last_deepest() when `depth` is true or penetration is selected.
   void observe(const BodyState& before, const BodyState& after, int step, bool per_body,
                bool depth = false);
@@ -90,6 +92,10 @@ class MetricsRecorder {
  private:
   // How deep pair (i, j) overlapped in the initial state (0 if apart).
   double initial_depth(std::size_t i, std::size_t j) const;
+  static bool still(const BodyState& before, const BodyState& after);
+  void observe_still(const BodyState& after, int step, bool displacement, bool overlaps);
+  // Body i's finiteness, speed and blow-up bucket over the step from `before` to `after`.
+  void update_slack(const BodyState& before, const BodyState& after, std::size_t i, int step);
 
   MetricSelection sel_;
   const Scene& scene_;
@@ -100,6 +106,9 @@ class MetricsRecorder {
   TunnelWatch tunnels_;
   std::vector<double> step_efd_, step_pen_;
   std::vector<double> slack_;  // per body: what is left of its allowance, m
+  // Dynamic bodies whose slack is below their allowance, in scene order: the only ones a step
+  // that moves nothing changes.
+  std::vector<std::size_t> recovering_;
   std::vector<double> depth_;  // per body: its deepest overlap in the last state observed, m
   double efd_total_ = 0.0, efd_max_ = 0.0, max_pen_ = 0.0;
   double peak_speed_ = 0.0;
@@ -113,6 +122,9 @@ class MetricsRecorder {
   double worst_ratio_ = 0.0;
   std::uint64_t body_steps_ = 0;
   bool finite_ = true;
+  bool efd_zero_ = true;  // step_efd_ holds zeros only
+  // The last step observed, and the last whose overlaps were measured (-2: none).
+  int last_step_ = -2, overlaps_step_ = -2;
 };
 
 // Whether a difference of `value` between quantities of magnitude `magnitude` is rounding: at or

@@ -33,27 +33,12 @@ MetricSelection parse_metric_selection(const std::string& text) {
   return sel;
 }
 
-namespace {
-
-double magnitude(Vec2d p) {
-  return std::max(std::abs(p.x), std::abs(p.y));
-}
-
-}  // namespace
-
 double MetricsRecorder::initial_depth(std::size_t i, std::size_t j) const {
   const auto& initial = bounds_.initial_overlaps;
   if (initial.empty()) return 0.0;
   const std::pair<std::uint64_t, double> key{pair_key(i, j), -HUGE_VAL};
   const auto it = std::lower_bound(initial.begin(), initial.end(), key);
   return it != initial.end() && it->first == key.first ? it->second : 0.0;
-}
-
-// One unit in the last place of a single-precision coordinate of this magnitude: a float engine
-// far from the origin moves in steps of it.
-double float_resolution(Vec2d p) {
-  const auto m = static_cast<float>(std::min(magnitude(p), 3.0e38));
-  return static_cast<double>(std::nextafter(m, HUGE_VALF) - m);
 }
 
 bool below_resolution(double value, double magnitude) {
@@ -102,145 +87,11 @@ MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
   depth_ = bounds_.initial_depth;
   step_efd_.assign(n, 0.0);
   step_pen_.assign(n, 0.0);
+  active_.assign(n, 0);
   recovering_.reserve(dynamic_.size());
-}
-
-// Whether nothing moved in the step from `before` to `after`: every position and angle as it was
-// and every velocity zero. Compared as values, so that a NaN always counts as a move. Checked in
-// blocks, so that a moving world (where a full pass follows anyway) pays for one block or so.
-bool MetricsRecorder::still(const BodyState& before, const BodyState& after) {
-  const std::size_t n = after.position.size();
-  constexpr std::size_t kBlock = 1024;
-  for (std::size_t start = 0; start < n; start += kBlock) {
-    const std::size_t end = std::min(n, start + kBlock);
-    bool moved = false;
-    for (std::size_t i = start; i < end; ++i) {
-      moved |= (after.position[i].x != before.position[i].x) |
-               (after.position[i].y != before.position[i].y) | (after.angle[i] != before.angle[i]) |
-               (after.velocity[i].x != 0.0) | (after.velocity[i].y != 0.0);
-    }
-    if (moved) return false;
-  }
-  return true;
-}
-
-void MetricsRecorder::update_slack(const BodyState& before, const BodyState& after, std::size_t i,
-                                   int step) {
-  const Vec2d p = after.position[i], v = after.velocity[i], q = before.position[i];
-  if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(v.x) || !std::isfinite(v.y)) {
-    finite_ = false;
-    return;
-  }
-  const double moved = std::hypot(p.x - q.x, p.y - q.y);
-  const double speed = moved / dt_;
-  if (speed > peak_speed_) peak_speed_ = speed, peak_body_ = i, peak_step_ = step;
-  // A leaky bucket: a step slower than the bound gives back what faster ones took, up to
-  // the allowance, so that over any stretch of steps a body travels at most the bound times
-  // its duration plus the allowance. A step may also push the body out of the overlap it was
-  // in, and round it to single precision, without counting against it.
-  const double bound = bounds_.speed[i];
-  if (!std::isfinite(bound)) return;
-  const double free = bound * dt_ + depth_[i] + float_resolution(p);
-  slack_[i] = std::min(bounds_.allowance[i], slack_[i] + free - moved);
-  if (slack_[i] < 0.0 && !blow_up_) {
-    blow_up_ = true, blow_up_body_ = i, blow_up_step_ = step, blow_up_speed_ = speed;
-  }
-}
-
-void MetricsRecorder::observe(const BodyState& before, const BodyState& after, int step,
-                              bool per_body, bool depth) {
-  const bool displacement = sel_.displacement || per_body;
-  const bool overlaps = sel_.penetration || per_body || depth || sel_.stability;
-  // A step that moved nothing leaves every figure as the step before left it, so only what
-  // changes with the step's number is redone. Not the run's last step: there a pair's tolerance
-  // drops to the scene's own (see below), which may make it the worst.
-  const bool follows = step == last_step_ + 1 && (!overlaps || overlaps_step_ == last_step_);
-  if (follows && step < scene_.steps && still(before, after)) {
-    observe_still(after, step, displacement, overlaps);
-    return;
-  }
-  if (displacement) {
-    for (const std::size_t i : dynamic_) {
-      const double dx = after.position[i].x - before.position[i].x - dt_ * after.velocity[i].x;
-      const double dy = after.position[i].y - before.position[i].y - dt_ * after.velocity[i].y;
-      const double d = std::sqrt(dx * dx + dy * dy);  // positions stay far below overflow
-      step_efd_[i] = d;
-      efd_total_ += d;
-      efd_max_ = std::max(efd_max_, d);
-    }
-    body_steps_ += dynamic_.size();
-    efd_zero_ = false;
-  }
-  if (overlaps) {
-    scan_.build(before, after);
-    deepest_ = PairOverlap{};
-    deepest_.step = step;
-    std::fill(step_pen_.begin(), step_pen_.end(), 0.0);
-    scan_.for_each_pair([&](std::size_t i, std::size_t j) {
-      if (sel_.stability) tunnels_.check(before, after, i, j, step);
-      const double d = scan_.depth(after, i, j);
-      const Vec2d hi = scan_.half(i), hj = scan_.half(j);
-      const double scale = std::max(
-          {magnitude(after.position[i]), magnitude(after.position[j]), hi.x + hj.x, hi.y + hj.y});
-      if (d <= 0.0 || below_resolution(d, scale)) return;
-      // A pair created overlapping may stay as deep as it started while it recovers, but not at
-      // the end of the run.
-      const double base =
-          scene_.penetration_tolerance.value_or(0.1 * std::min({hi.x, hi.y, hj.x, hj.y}));
-      const double tolerance = step < scene_.steps ? std::max(base, initial_depth(i, j)) : base;
-      // Of equal depths the lowest pair, whatever order the scan meets them in.
-      if (d > deepest_.depth ||
-          (d == deepest_.depth && pair_key(i, j) < pair_key(deepest_.a, deepest_.b)))
-        deepest_ = {d, i, j, step, tolerance};
-      step_pen_[i] = std::max(step_pen_[i], d);
-      step_pen_[j] = std::max(step_pen_[j], d);
-      if (sel_.penetration && d / tolerance > worst_ratio_) {
-        worst_ratio_ = d / tolerance;
-        worst_ = {d, i, j, step, tolerance};
-      }
-    });
-    if (sel_.stability) tunnels_.end_step();
-    max_pen_ = std::max(max_pen_, deepest_.depth);
-  }
-  if (sel_.stability) {
-    recovering_.clear();
-    for (const std::size_t i : dynamic_) {
-      update_slack(before, after, i, step);
-      if (slack_[i] < bounds_.allowance[i]) recovering_.push_back(i);
-    }
-  }
-  if (overlaps) {
-    depth_ = step_pen_;  // each body's deepest overlap now, for the next step
-    overlaps_step_ = step;
-  }
-  last_step_ = step;
-}
-
-// The step moved nothing: every pair overlaps as deep as after the step before, so the deepest
-// overlap, each body's deepest and the worst against its tolerance are what they were (a pair's
-// tolerance is the same until the last step), and no body moved or passed through another. What
-// is left: zero displacements, and the buckets of bodies still refilling after a faster step.
-void MetricsRecorder::observe_still(const BodyState& after, int step, bool displacement,
-                                    bool overlaps) {
-  if (displacement) {
-    if (!efd_zero_) std::fill(step_efd_.begin(), step_efd_.end(), 0.0);
-    efd_zero_ = true;
-    body_steps_ += dynamic_.size();
-  }
-  if (overlaps) {
-    deepest_.step = step;
-    if (sel_.stability) tunnels_.hold(after);
-    overlaps_step_ = step;
-  }
-  if (sel_.stability) {
-    std::size_t kept = 0;
-    for (const std::size_t i : recovering_) {
-      update_slack(after, after, i, step);
-      if (slack_[i] < bounds_.allowance[i]) recovering_[kept++] = i;
-    }
-    recovering_.resize(kept);
-  }
-  last_step_ = step;
+  merged_.reserve(dynamic_.size());
+  moved_.reserve(n / 4 + 1);
+  efd_written_.reserve(dynamic_.size());
 }
 
 Metrics MetricsRecorder::result(const BodyState& last) const {

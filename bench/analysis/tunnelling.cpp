@@ -112,18 +112,33 @@ void TunnelWatch::check(const BodyState& before, const BodyState& after, std::si
                        std::hypot(after.position[j].x - before.position[j].x,
                                   after.position[j].y - before.position[j].y);
   ++count_;
-  if (!first_) first_ = TunnelEvent{i_moved ? i : j, i_moved ? j : i, step};
+  // Of several in one step, the lowest pair's, whatever order the pairs are judged in.
+  if (!first_ || (first_->step == step && pair < first_pair_)) {
+    first_ = TunnelEvent{i_moved ? i : j, i_moved ? j : i, step};
+    first_pair_ = pair;
+  }
+}
+
+// What check() does to a pair that did not move: one outside stays out, one inside stays in and
+// is judged again for having crossed the middle, at the point it rests on.
+void TunnelWatch::rest(const BodyState& s, Inside& p) const {
+  if (p.entry == kNoFace || p.deep) return;
+  const auto i = static_cast<std::size_t>(p.pair >> 32);
+  const auto j = static_cast<std::size_t>(p.pair & 0xffffffffu);
+  const Vec2d r{s.position[i].x - s.position[j].x, s.position[i].y - s.position[j].y};
+  p.deep = deep(i, j, r, r, p.entry / 2);
 }
 
 void TunnelWatch::hold(const BodyState& s) {
-  // What check() does to a pair that stays inside without moving: a pair outside stays out, one
-  // inside stays in and is re-judged for having crossed the middle at the point it rests on.
-  for (Inside& p : inside_) {
-    if (p.entry == kNoFace || p.deep) continue;
-    const auto i = static_cast<std::size_t>(p.pair >> 32),
-               j = static_cast<std::size_t>(p.pair & 0xffffffffu);
-    const Vec2d r{s.position[i].x - s.position[j].x, s.position[i].y - s.position[j].y};
-    p.deep = deep(i, j, r, r, p.entry / 2);
+  for (Inside& p : inside_)
+    rest(s, p);
+}
+
+void TunnelWatch::carry(const BodyState& s, std::span<const std::uint8_t> moved) {
+  for (const Inside& p : inside_) {
+    if (moved[p.pair >> 32] || moved[p.pair & 0xffffffffu]) continue;
+    next_.push_back(p);
+    rest(s, next_.back());
   }
 }
 

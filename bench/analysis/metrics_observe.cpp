@@ -60,10 +60,13 @@ bool MetricsRecorder::find_moved(const BodyState& before, const BodyState& after
   // Whole blocks are compared first (values, so that a NaN always counts as a move); only a block
   // with a move in it is walked body by body.
   constexpr std::size_t kBlock = 256;
+  // Angles count only where the scene turns its boxes: elsewhere no figure reads them.
+  const bool turning = scan_.rotated();
   auto moved = [&](std::size_t i) {
     return (after.position[i].x != before.position[i].x) |
-           (after.position[i].y != before.position[i].y) | (after.angle[i] != before.angle[i]) |
-           (after.velocity[i].x != 0.0) | (after.velocity[i].y != 0.0);
+           (after.position[i].y != before.position[i].y) |
+           (turning && after.angle[i] != before.angle[i]) | (after.velocity[i].x != 0.0) |
+           (after.velocity[i].y != 0.0);
   };
   for (std::size_t start = 0; start < n; start += kBlock) {
     const std::size_t end = std::min(n, start + kBlock);

@@ -69,7 +69,7 @@ void PairScan::build(const BodyState& before, const BodyState& after) {
   bounds_ = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (std::size_t i = 0; i < half_.size(); ++i)
     add(i, before, after);
-  sort_entries(2);
+  sort_entries();
 }
 
 void PairScan::build(const BodyState& before, const BodyState& after,
@@ -81,13 +81,14 @@ void PairScan::build(const BodyState& before, const BodyState& after,
   bounds_ = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (const std::uint32_t i : members)
     add(i, before, after);
-  // Sparser buckets: every body at rest looks its cells up, and most find them empty.
-  sort_entries(8);
+  sort_entries();
 }
 
-void PairScan::sort_entries(std::uint64_t spread) {
-  // Counting sort by bucket; stable, so bodies keep their scene order within a bucket.
-  const std::uint64_t table = std::bit_ceil(std::max<std::uint64_t>(64, spread * entries_.size()));
+void PairScan::sort_entries() {
+  // Counting sort by bucket; stable, so bodies keep their scene order within a bucket. Twice as
+  // many buckets as entries: most lookups of a body at rest meet an empty one, and the table
+  // stays small enough for the cache.
+  const std::uint64_t table = std::bit_ceil(std::max<std::uint64_t>(64, 2 * entries_.size()));
   mask_ = table - 1;
   start_.assign(table + 1, 0);
   for (const Entry& e : entries_)

@@ -68,7 +68,7 @@ class PairScan {
     return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1;
   }
   void add(std::size_t i, const BodyState& before, const BodyState& after);
-  void sort_entries(std::uint64_t spread);
+  void sort_entries();
   template <class Fn>
   void report(std::uint32_t i, std::uint32_t j, Fn& fn) const {
     if (dynamic_[i] | dynamic_[j]) fn(std::min(i, j), std::max(i, j));
@@ -95,11 +95,13 @@ template <class Fn>
 void PairScan::for_each_pair(Fn&& fn) const {
   // Pairs within a bucket of the same cell, each reported by the cell holding the lower-left
   // corner of the two boxes' intersection.
-  for (std::size_t b = 0; b + 1 < start_.size(); ++b) {
-    for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k) {
+  // Bucket by bucket, walking the entries rather than the (mostly empty) table.
+  for (std::uint32_t first = 0, last = 0; first < sorted_.size(); first = last) {
+    last = start_[bucket(sorted_[first].cx, sorted_[first].cy) + 1];
+    for (std::uint32_t k = first; k < last; ++k) {
       const Entry& e = sorted_[k];
       const Box& a = swept_[e.body];
-      for (std::uint32_t m = k + 1; m < start_[b + 1]; ++m) {
+      for (std::uint32_t m = k + 1; m < last; ++m) {
         const Entry& f = sorted_[m];
         if (f.cx != e.cx || f.cy != e.cy || f.body == e.body) continue;
         const Box& c = swept_[f.body];

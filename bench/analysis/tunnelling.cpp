@@ -130,8 +130,11 @@ void TunnelWatch::rest(const BodyState& s, Inside& p) const {
 }
 
 void TunnelWatch::hold(const BodyState& s) {
+  // At rest a second time, each pair is judged at the point it was judged at already.
+  if (held_) return;
   for (Inside& p : inside_)
     rest(s, p);
+  held_ = true;
 }
 
 void TunnelWatch::carry(const BodyState& s, std::span<const std::uint8_t> moved) {
@@ -143,6 +146,7 @@ void TunnelWatch::carry(const BodyState& s, std::span<const std::uint8_t> moved)
 }
 
 void TunnelWatch::end_step() {
+  held_ = false;
   std::sort(next_.begin(), next_.end(),
             [](const Inside& a, const Inside& b) { return a.pair < b.pair; });
   inside_.swap(next_);

@@ -67,6 +67,7 @@ class TunnelWatch {
   std::vector<Inside> inside_, next_;  // pairs overlapping after the last step / this step
   std::optional<TunnelEvent> first_;
   std::uint64_t first_pair_ = 0;
+  bool held_ = false;  // hold() has judged inside_ at rest since the last step that moved
   std::uint64_t count_ = 0;
 };
 

@@ -47,6 +47,11 @@ def load(path):
         if len(parts) < 3 or parts[-1] in ("BigO", "RMS") or "_BigO" in b["name"] or "_RMS" in b["name"]:
             continue
         size = next((p for p in parts[2:] if p.isdigit()), "")
+        if parts[0] == "harness":  # harness/FAMILY/SIZE/metrics:K: one entry per K
+            flag = next((p for p in parts if p.startswith("metrics:")), None)
+            if flag is None:
+                continue
+            size += "/" + flag[len("metrics:"):]
         runs[(parts[0], parts[1], size)] = b
     return data.get("context", {}), runs
 
@@ -288,6 +293,29 @@ def scaling_tables(context, runs, subject):
     return out
 
 
+def harness_table(context, runs, subject):
+    """Per family and size the subject was timed at: a bare step, a step with the state read
+    back and every metric of `chainbench run` computed after it, and their ratio."""
+    recipes = family_recipes(context)
+    # Families in the order the benchmark ran them (their own rows come before the harness').
+    order = list(dict.fromkeys(e if f == "harness" else f for f, e, _ in runs))
+    rows = sorted({(family, key.split("/")[0]) for f, family, key in runs if f == "harness"},
+                  key=lambda r: (order.index(r[0]), int(r[1] or 0)))
+    out = []
+    for family, size in rows:
+        bare, full = runs.get(("harness", family, f"{size}/0")), runs.get(("harness", family, f"{size}/1"))
+        if not bare or not full:
+            continue
+        out.append(f"| {row_label(recipes, family, size)} | {int(bare.get('bodies', 0)):,} | {fmt_ms(ms(bare))} | "
+                   f"{fmt_ms(ms(full))} | {ms(full) / ms(bare):.2f}x |")
+    if not out:
+        return []
+    return ["", f"Harness cost: a bare `{subject}` step, and a step plus reading the state back and "
+            "computing every metric of `chainbench run` after it (`harness/FAMILY/SIZE/metrics:0|1`):",
+            "", "| scene | bodies | bare ms/step | with metrics ms/step | ratio |",
+            "|---|---:|---:|---:|---:|"] + out
+
+
 def tables(context, runs, accuracy=None):
     """Every table, in the order the module docstring gives."""
     accuracy = accuracy or {}
@@ -298,11 +326,7 @@ def tables(context, runs, accuracy=None):
     out += results_table(context, runs, accuracy, subject, reference)
     out += work_table(context, runs)
     out += scaling_tables(context, runs, subject)
-    bare, full = runs.get(("harness", "pyramid100", "0")), runs.get(("harness", "pyramid100", "1"))
-    if bare and full:
-        out += ["", f"Harness cost on `pyramid` base=100: a bare `{subject}` step {ms(bare):.3f} ms; step "
-                f"plus reading the state back and computing every metric {ms(full):.3f} ms "
-                f"({ms(full) / ms(bare):.2f}x)."]
+    out += harness_table(context, runs, subject)
     out += ["", f"Measured {context.get('date', '?')} on {context.get('num_cpus', '?')} CPUs at "
             f"{context.get('mhz_per_cpu', '?')} MHz, one benchmark at a time; ratios are from the same run."]
     return "\n".join(out)

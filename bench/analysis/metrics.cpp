@@ -33,27 +33,12 @@ MetricSelection parse_metric_selection(const std::string& text) {
   return sel;
 }
 
-namespace {
-
-double magnitude(Vec2d p) {
-  return std::max(std::abs(p.x), std::abs(p.y));
-}
-
-}  // namespace
-
 double MetricsRecorder::initial_depth(std::size_t i, std::size_t j) const {
   const auto& initial = bounds_.initial_overlaps;
   if (initial.empty()) return 0.0;
   const std::pair<std::uint64_t, double> key{pair_key(i, j), -HUGE_VAL};
   const auto it = std::lower_bound(initial.begin(), initial.end(), key);
   return it != initial.end() && it->first == key.first ? it->second : 0.0;
-}
-
-// One unit in the last place of a single-precision coordinate of this magnitude: a float engine
-// far from the origin moves in steps of it.
-double float_resolution(Vec2d p) {
-  const auto m = static_cast<float>(std::min(magnitude(p), 3.0e38));
-  return static_cast<double>(std::nextafter(m, HUGE_VALF) - m);
 }
 
 bool below_resolution(double value, double magnitude) {
@@ -80,7 +65,9 @@ PairOverlap MetricsRecorder::deepest_overlap(const Scene& scene, const BodyState
   deepest.step = step;
   scan.for_each_pair([&](std::size_t i, std::size_t j) {
     const double d = scan.depth(state, i, j);
-    if (d > deepest.depth) deepest.depth = d, deepest.a = i, deepest.b = j;
+    if (d > deepest.depth ||
+        (d == deepest.depth && d > 0.0 && pair_key(i, j) < pair_key(deepest.a, deepest.b)))
+      deepest.depth = d, deepest.a = i, deepest.b = j;
   });
   return deepest;
 }
@@ -100,75 +87,11 @@ MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
   depth_ = bounds_.initial_depth;
   step_efd_.assign(n, 0.0);
   step_pen_.assign(n, 0.0);
-}
-
-void MetricsRecorder::observe(const BodyState& before, const BodyState& after, int step,
-                              bool per_body, bool depth) {
-  if (sel_.displacement || per_body) {
-    for (const std::size_t i : dynamic_) {
-      const double dx = after.position[i].x - before.position[i].x - dt_ * after.velocity[i].x;
-      const double dy = after.position[i].y - before.position[i].y - dt_ * after.velocity[i].y;
-      const double d = std::sqrt(dx * dx + dy * dy);  // positions stay far below overflow
-      step_efd_[i] = d;
-      efd_total_ += d;
-      efd_max_ = std::max(efd_max_, d);
-    }
-    body_steps_ += dynamic_.size();
-  }
-  const bool overlaps = sel_.penetration || per_body || depth || sel_.stability;
-  if (overlaps) {
-    scan_.build(before, after);
-    deepest_ = PairOverlap{};
-    deepest_.step = step;
-    std::fill(step_pen_.begin(), step_pen_.end(), 0.0);
-    scan_.for_each_pair([&](std::size_t i, std::size_t j) {
-      if (sel_.stability) tunnels_.check(before, after, i, j, step);
-      const double d = scan_.depth(after, i, j);
-      const Vec2d hi = scan_.half(i), hj = scan_.half(j);
-      const double scale = std::max(
-          {magnitude(after.position[i]), magnitude(after.position[j]), hi.x + hj.x, hi.y + hj.y});
-      if (d <= 0.0 || below_resolution(d, scale)) return;
-      // A pair created overlapping may stay as deep as it started while it recovers, but not at
-      // the end of the run.
-      const double base =
-          scene_.penetration_tolerance.value_or(0.1 * std::min({hi.x, hi.y, hj.x, hj.y}));
-      const double tolerance = step < scene_.steps ? std::max(base, initial_depth(i, j)) : base;
-      if (d > deepest_.depth) deepest_ = {d, i, j, step, tolerance};
-      step_pen_[i] = std::max(step_pen_[i], d);
-      step_pen_[j] = std::max(step_pen_[j], d);
-      if (sel_.penetration && d / tolerance > worst_ratio_) {
-        worst_ratio_ = d / tolerance;
-        worst_ = {d, i, j, step, tolerance};
-      }
-    });
-    if (sel_.stability) tunnels_.end_step();
-    max_pen_ = std::max(max_pen_, deepest_.depth);
-  }
-  if (sel_.stability) {
-    for (const std::size_t i : dynamic_) {
-      const Vec2d p = after.position[i], v = after.velocity[i], q = before.position[i];
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(v.x) ||
-          !std::isfinite(v.y)) {
-        finite_ = false;
-        continue;
-      }
-      const double moved = std::hypot(p.x - q.x, p.y - q.y);
-      const double speed = moved / dt_;
-      if (speed > peak_speed_) peak_speed_ = speed, peak_body_ = i, peak_step_ = step;
-      // A leaky bucket: a step slower than the bound gives back what faster ones took, up to
-      // the allowance, so that over any stretch of steps a body travels at most the bound times
-      // its duration plus the allowance. A step may also push the body out of the overlap it was
-      // in, and round it to single precision, without counting against it.
-      const double bound = bounds_.speed[i];
-      if (!std::isfinite(bound)) continue;
-      const double free = bound * dt_ + depth_[i] + float_resolution(p);
-      slack_[i] = std::min(bounds_.allowance[i], slack_[i] + free - moved);
-      if (slack_[i] < 0.0 && !blow_up_) {
-        blow_up_ = true, blow_up_body_ = i, blow_up_step_ = step, blow_up_speed_ = speed;
-      }
-    }
-  }
-  if (overlaps) depth_ = step_pen_;  // each body's deepest overlap now, for the next step
+  active_.assign(n, 0);
+  recovering_.reserve(dynamic_.size());
+  merged_.reserve(dynamic_.size());
+  moved_.reserve(n / 4 + 1);
+  efd_written_.reserve(dynamic_.size());
 }
 
 Metrics MetricsRecorder::result(const BodyState& last) const {

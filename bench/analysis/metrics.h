@@ -8,6 +8,8 @@
 #include "scene.h"
 #include "tunnelling.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -73,10 +75,17 @@ class MetricsRecorder {
  public:
   MetricsRecorder(const Scene& scene, MetricSelection selection);
   // Call after every step with the state before and after it and the step's number (1 for the
-  // first step). Fills step_displacement() and step_penetration() (per body, this step) when
-  // `per_body` is true, and last_deepest() when `depth` is true or penetration is selected.
+  // first step); `before` is the `after` of the previous call (or the initial state). Fills
+  // step_displacement() and step_penetration() (per body, this step) when `per_body` is true, and
+  // last_deepest() when `depth` is true or penetration is selected.
+  //
+  // The cost follows what moved: a step that moved nothing costs one pass comparing the two
+  // states, and one that moved a few bodies a pass more, looking each body at rest up in a grid of
+  // the moving ones (metrics_observe.cpp). The figures are those of a full scan.
   void observe(const BodyState& before, const BodyState& after, int step, bool per_body,
                bool depth = false);
+  // Every step from now on scans every body: the check the shortcuts are tested against.
+  void scan_every_body() { every_body_ = true; }
   // The metrics of the run that ended in `last`.
   Metrics result(const BodyState& last) const;
   std::span<const double> step_displacement() const { return step_efd_; }
@@ -90,6 +99,27 @@ class MetricsRecorder {
  private:
   // How deep pair (i, j) overlapped in the initial state (0 if apart).
   double initial_depth(std::size_t i, std::size_t j) const;
+  // A pair overlapping after a step, as the step's figures count it.
+  struct Overlap {
+    std::uint32_t a, b;  // a < b
+    double depth, tolerance;
+  };
+  // Lists in moved_ the bodies the step from `before` to `after` moved (or left with a velocity);
+  // false, with the list unfinished, when more than a quarter did (a full scan is cheaper then).
+  bool find_moved(const BodyState& before, const BodyState& after);
+  void observe_all(const BodyState& before, const BodyState& after, int step, bool displacement,
+                   bool overlaps);
+  void observe_some(const BodyState& before, const BodyState& after, int step, bool displacement,
+                    bool overlaps);
+  void observe_still(const BodyState& after, int step, bool displacement, bool overlaps);
+  // Judges pair (i, j) over the step: tunnelling, and into fresh_ when it overlaps.
+  void visit(const BodyState& before, const BodyState& after, std::size_t i, std::size_t j,
+             int step);
+  // The step's deepest overlap and each body's deepest, from fresh_.
+  void settle(int step);
+  void clear_displacements();
+  // Body i's finiteness, speed and blow-up bucket over the step from `before` to `after`.
+  void update_slack(const BodyState& before, const BodyState& after, std::size_t i, int step);
 
   MetricSelection sel_;
   const Scene& scene_;
@@ -100,6 +130,17 @@ class MetricsRecorder {
   TunnelWatch tunnels_;
   std::vector<double> step_efd_, step_pen_;
   std::vector<double> slack_;  // per body: what is left of its allowance, m
+  // Dynamic bodies whose slack is below their allowance, in scene order: besides the bodies that
+  // moved, the only ones whose bucket a step changes.
+  std::vector<std::size_t> recovering_, merged_;
+  std::vector<std::uint32_t> moved_;  // ascending
+  std::vector<std::uint8_t> active_;  // per body: in moved_ (set while a step is observed)
+  // The pairs overlapping after the last step measured, and those of this step.
+  std::vector<Overlap> overlaps_, fresh_;
+  // step_efd_'s non-zero entries: every dynamic body's (dense), or these.
+  bool efd_dense_ = false;
+  bool every_body_ = false;
+  std::vector<std::size_t> efd_written_;
   std::vector<double> depth_;  // per body: its deepest overlap in the last state observed, m
   double efd_total_ = 0.0, efd_max_ = 0.0, max_pen_ = 0.0;
   double peak_speed_ = 0.0;
@@ -113,11 +154,17 @@ class MetricsRecorder {
   double worst_ratio_ = 0.0;
   std::uint64_t body_steps_ = 0;
   bool finite_ = true;
+  // The last step observed, and the last whose overlaps were measured (-2: none).
+  int last_step_ = -2, overlaps_step_ = -2;
 };
 
 // Whether a difference of `value` between quantities of magnitude `magnitude` is rounding: at or
 // below two units in the last place of that magnitude. Such figures are reported as 0.
 bool below_resolution(double value, double magnitude);
+// The larger absolute coordinate of p: the magnitude a position's rounding is judged against.
+inline double magnitude(Vec2d p) {
+  return std::max(std::abs(p.x), std::abs(p.y));
+}
 
 // FNV-1a, 64 bit, over the bit patterns of every final position (x then y, scene order).
 std::uint64_t position_hash(std::span<const Vec2d> positions);

@@ -1,5 +1,6 @@
 #include "motion_bounds.h"
 
+#include "box_grid.h"
 #include "metrics.h"
 #include "pair_scan.h"
 
@@ -87,39 +88,42 @@ MotionBounds motion_bounds(const Scene& scene) {
   // Pushing a cluster's overlaps apart moves its bodies by up to those overlaps, and with them any
   // body within that reach of the cluster: each body may travel as far as the largest overlap of
   // any cluster whose box, grown by that overlap, reaches it.
-  struct Box {
-    double x0, y0, x1, y1;
-  };
+  using Box = BoxGrid::Box;
   auto box_of = [&](std::size_t i) {
     const SceneBody& b = scene.bodies[i];
     return Box{b.center.x - b.half_extents.x, b.center.y - b.half_extents.y,
                b.center.x + b.half_extents.x, b.center.y + b.half_extents.y};
   };
   std::vector<Box> cluster_box(n, Box{inf, inf, -inf, -inf});
+  std::vector<std::size_t> dynamic;
+  std::vector<Box> boxes;
+  std::vector<double> sizes;
   for (std::size_t i = 0; i < n; ++i) {
     if (scene.bodies[i].kind != BodyKind::kDynamic) continue;
     Box& c = cluster_box[root(parent, i)];
     const Box b = box_of(i);
     c = {std::min(c.x0, b.x0), std::min(c.y0, b.y0), std::max(c.x1, b.x1), std::max(c.y1, b.y1)};
+    dynamic.push_back(i);
+    boxes.push_back(b);
+    sizes.push_back(std::max(b.x1 - b.x0, b.y1 - b.y0));
   }
-  std::vector<std::size_t> by_left;  // dynamic bodies by their left edge
-  for (std::size_t i = 0; i < n; ++i) {
-    if (scene.bodies[i].kind == BodyKind::kDynamic) by_left.push_back(i);
+  // A grid of the dynamic bodies, its cells about the size of most of them, so that each cluster
+  // finds the bodies its reach touches without walking past the rest.
+  double cell = 1.0;
+  if (!sizes.empty()) {
+    const auto k = static_cast<std::ptrdiff_t>((sizes.size() - 1) * 9 / 10);
+    std::nth_element(sizes.begin(), sizes.begin() + k, sizes.end());
+    cell = sizes[static_cast<std::size_t>(k)];
   }
-  std::sort(by_left.begin(), by_left.end(),
-            [&](std::size_t a, std::size_t b) { return box_of(a).x0 < box_of(b).x0; });
+  const BoxGrid grid(boxes, cell);
   std::vector<double> pushed(n, 0.0);
   for (std::size_t c = 0; c < n; ++c) {
     const double s = cluster_overlap[c];
     if (s <= 0.0) continue;
     const Box reach{cluster_box[c].x0 - s, cluster_box[c].y0 - s, cluster_box[c].x1 + s,
                     cluster_box[c].y1 + s};
-    for (const std::size_t i : by_left) {
-      const Box b = box_of(i);
-      if (b.x0 > reach.x1) break;
-      if (b.x1 >= reach.x0 && b.y0 <= reach.y1 && b.y1 >= reach.y0)
-        pushed[i] = std::max(pushed[i], s);
-    }
+    grid.for_each_touching(
+        reach, [&](std::size_t k) { pushed[dynamic[k]] = std::max(pushed[dynamic[k]], s); });
   }
 
   const double bounded_speed = fastest + fall + drive;  // no bounce: the fastest in a collision

@@ -35,35 +35,59 @@ std::uint64_t PairScan::bucket(std::int64_t cx, std::int64_t cy) const {
   return (h ^ (h >> 29)) & mask_;
 }
 
+void PairScan::add(std::size_t i, const BodyState& before, const BodyState& after) {
+  const Vec2d p = before.position[i], q = after.position[i];
+  live_[i] = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(q.x) && std::isfinite(q.y);
+  giant_[i] = 0;
+  if (!live_[i]) return;
+  const Vec2d r = reach_[i];
+  const Box box{std::min(p.x, q.x) - r.x, std::min(p.y, q.y) - r.y, std::max(p.x, q.x) + r.x,
+                std::max(p.y, q.y) + r.y};
+  swept_[i] = box;
+  const std::int64_t cx0 = cell(box.x0), cx1 = cell(box.x1);
+  const std::int64_t cy0 = cell(box.y0), cy1 = cell(box.y1);
+  // Compared in double: a box of a huge world can span more cells than an int64 holds.
+  const double cells = (static_cast<double>(cx1) - static_cast<double>(cx0) + 1.0) *
+                       (static_cast<double>(cy1) - static_cast<double>(cy0) + 1.0);
+  if (cells > static_cast<double>(kMaxCells)) {
+    giant_[i] = 1;
+    giants_.push_back(static_cast<std::uint32_t>(i));
+    return;
+  }
+  bounds_ = {std::min(bounds_.x0, box.x0), std::min(bounds_.y0, box.y0),
+             std::max(bounds_.x1, box.x1), std::max(bounds_.y1, box.y1)};
+  for (std::int64_t cy = cy0; cy <= cy1; ++cy) {
+    for (std::int64_t cx = cx0; cx <= cx1; ++cx)
+      entries_.push_back({static_cast<std::uint32_t>(i), cx, cy});
+  }
+}
+
 void PairScan::build(const BodyState& before, const BodyState& after) {
-  const std::size_t n = half_.size();
   entries_.clear();
   giants_.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2d p = before.position[i], q = after.position[i];
-    live_[i] = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(q.x) && std::isfinite(q.y);
-    giant_[i] = 0;
-    if (!live_[i]) continue;
-    const Vec2d r = reach_[i];
-    const Box box{std::min(p.x, q.x) - r.x, std::min(p.y, q.y) - r.y, std::max(p.x, q.x) + r.x,
-                  std::max(p.y, q.y) + r.y};
-    swept_[i] = box;
-    const std::int64_t cx0 = cell(box.x0), cx1 = cell(box.x1);
-    const std::int64_t cy0 = cell(box.y0), cy1 = cell(box.y1);
-    // Compared in double: a box of a huge world can span more cells than an int64 holds.
-    const double cells = (static_cast<double>(cx1) - static_cast<double>(cx0) + 1.0) *
-                         (static_cast<double>(cy1) - static_cast<double>(cy0) + 1.0);
-    if (cells > static_cast<double>(kMaxCells)) {
-      giant_[i] = 1;
-      giants_.push_back(static_cast<std::uint32_t>(i));
-      continue;
-    }
-    for (std::int64_t cy = cy0; cy <= cy1; ++cy) {
-      for (std::int64_t cx = cx0; cx <= cx1; ++cx)
-        entries_.push_back({static_cast<std::uint32_t>(i), cx, cy});
-    }
-  }
-  // Counting sort by bucket; stable, so bodies keep their scene order within a bucket.
+  subset_ = false;
+  bounds_ = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (std::size_t i = 0; i < half_.size(); ++i)
+    add(i, before, after);
+  sort_entries();
+}
+
+void PairScan::build(const BodyState& before, const BodyState& after,
+                     std::span<const std::uint32_t> members) {
+  entries_.clear();
+  giants_.clear();
+  subset_ = true;
+  members_ = members;
+  bounds_ = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const std::uint32_t i : members)
+    add(i, before, after);
+  sort_entries();
+}
+
+void PairScan::sort_entries() {
+  // Counting sort by bucket; stable, so bodies keep their scene order within a bucket. Twice as
+  // many buckets as entries: most lookups of a body at rest meet an empty one, and the table
+  // stays small enough for the cache.
   const std::uint64_t table = std::bit_ceil(std::max<std::uint64_t>(64, 2 * entries_.size()));
   mask_ = table - 1;
   start_.assign(table + 1, 0);

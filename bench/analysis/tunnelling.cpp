@@ -61,6 +61,18 @@ const TunnelWatch::Inside* TunnelWatch::find(std::uint64_t pair) const {
   return it != inside_.end() && it->pair == pair ? &*it : nullptr;
 }
 
+bool TunnelWatch::deep(std::size_t i, std::size_t j, Vec2d r0, Vec2d r1, int axis) const {
+  const Vec2d h{half_[i].x + half_[j].x, half_[i].y + half_[j].y};
+  const double a0 = axis == 0 ? r0.x : r0.y, a1 = axis == 0 ? r1.x : r1.y;
+  if ((a0 > 0.0) == (a1 > 0.0) && a1 != 0.0) return false;
+  const double t = a0 == a1 ? 0.0 : a0 / (a0 - a1);
+  const double b0 = axis == 0 ? r0.y : r0.x, b1 = axis == 0 ? r1.y : r1.x;
+  const double across = axis == 0 ? h.y : h.x;
+  const double smaller =
+      axis == 0 ? std::min(half_[i].y, half_[j].y) : std::min(half_[i].x, half_[j].x);
+  return std::abs(b0 + t * (b1 - b0)) <= across - smaller;
+}
+
 void TunnelWatch::check(const BodyState& before, const BodyState& after, std::size_t i,
                         std::size_t j, int step) {
   const Vec2d h{half_[i].x + half_[j].x, half_[i].y + half_[j].y};
@@ -68,18 +80,7 @@ void TunnelWatch::check(const BodyState& before, const BodyState& after, std::si
                  before.position[i].y - before.position[j].y};
   const Vec2d r1{after.position[i].x - after.position[j].x,
                  after.position[i].y - after.position[j].y};
-  // Whether the segment r0 -> r1 crosses the middle (r = 0) along `axis` with at least half of
-  // the smaller box across the other along the other axis.
-  auto deep_crossing = [&](int axis) {
-    const double a0 = axis == 0 ? r0.x : r0.y, a1 = axis == 0 ? r1.x : r1.y;
-    if ((a0 > 0.0) == (a1 > 0.0) && a1 != 0.0) return false;
-    const double t = a0 == a1 ? 0.0 : a0 / (a0 - a1);
-    const double b0 = axis == 0 ? r0.y : r0.x, b1 = axis == 0 ? r1.y : r1.x;
-    const double across = axis == 0 ? h.y : h.x;
-    const double smaller =
-        axis == 0 ? std::min(half_[i].y, half_[j].y) : std::min(half_[i].x, half_[j].x);
-    return std::abs(b0 + t * (b1 - b0)) <= across - smaller;
-  };
+  auto deep_crossing = [&](int axis) { return deep(i, j, r0, r1, axis); };
   const std::uint64_t pair = static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint64_t>(j);
   Inside now{pair, kNoFace, false};
   std::int8_t exit = kNoFace;
@@ -111,10 +112,41 @@ void TunnelWatch::check(const BodyState& before, const BodyState& after, std::si
                        std::hypot(after.position[j].x - before.position[j].x,
                                   after.position[j].y - before.position[j].y);
   ++count_;
-  if (!first_) first_ = TunnelEvent{i_moved ? i : j, i_moved ? j : i, step};
+  // Of several in one step, the lowest pair's, whatever order the pairs are judged in.
+  if (!first_ || (first_->step == step && pair < first_pair_)) {
+    first_ = TunnelEvent{i_moved ? i : j, i_moved ? j : i, step};
+    first_pair_ = pair;
+  }
+}
+
+// What check() does to a pair that did not move: one outside stays out, one inside stays in and
+// is judged again for having crossed the middle, at the point it rests on.
+void TunnelWatch::rest(const BodyState& s, Inside& p) const {
+  if (p.entry == kNoFace || p.deep) return;
+  const auto i = static_cast<std::size_t>(p.pair >> 32);
+  const auto j = static_cast<std::size_t>(p.pair & 0xffffffffu);
+  const Vec2d r{s.position[i].x - s.position[j].x, s.position[i].y - s.position[j].y};
+  p.deep = deep(i, j, r, r, p.entry / 2);
+}
+
+void TunnelWatch::hold(const BodyState& s) {
+  // At rest a second time, each pair is judged at the point it was judged at already.
+  if (held_) return;
+  for (Inside& p : inside_)
+    rest(s, p);
+  held_ = true;
+}
+
+void TunnelWatch::carry(const BodyState& s, std::span<const std::uint8_t> moved) {
+  for (const Inside& p : inside_) {
+    if (moved[p.pair >> 32] || moved[p.pair & 0xffffffffu]) continue;
+    next_.push_back(p);
+    rest(s, next_.back());
+  }
 }
 
 void TunnelWatch::end_step() {
+  held_ = false;
   std::sort(next_.begin(), next_.end(),
             [](const Inside& a, const Inside& b) { return a.pair < b.pair; });
   inside_.swap(next_);

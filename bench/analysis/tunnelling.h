@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace chainbench {
@@ -37,6 +38,12 @@ class TunnelWatch {
   void check(const BodyState& before, const BodyState& after, std::size_t i, std::size_t j,
              int step);
   void end_step();
+  // The step from the last state to `s` moved no body: the same as check() on every pair of that
+  // step and end_step(), without the pairs.
+  void hold(const BodyState& s);
+  // The step to `s` moved only the bodies flagged in `moved`: carries the pairs of the others as
+  // check() would; check() the pairs with a moved body, then end_step().
+  void carry(const BodyState& s, std::span<const std::uint8_t> moved);
 
   // The first tunnelling seen, and how many were seen in all.
   const std::optional<TunnelEvent>& first() const { return first_; }
@@ -51,10 +58,16 @@ class TunnelWatch {
     bool deep;  // crossed the middle across the entry face since it entered
   };
   const Inside* find(std::uint64_t pair) const;
+  // Whether the relative centre's segment r0 -> r1 of pair (i, j) crosses the middle (r = 0)
+  // along `axis` with at least half of the smaller box across the other along the other axis.
+  bool deep(std::size_t i, std::size_t j, Vec2d r0, Vec2d r1, int axis) const;
+  void rest(const BodyState& s, Inside& p) const;
 
   std::vector<Vec2d> half_;
   std::vector<Inside> inside_, next_;  // pairs overlapping after the last step / this step
   std::optional<TunnelEvent> first_;
+  std::uint64_t first_pair_ = 0;
+  bool held_ = false;  // hold() has judged inside_ at rest since the last step that moved
   std::uint64_t count_ = 0;
 };
 

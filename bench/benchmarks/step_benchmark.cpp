@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -99,27 +100,62 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
   state.SetComplexityN(static_cast<benchmark::IterationCount>(bodies));
 }
 
-// What the harness adds: the first default engine on pyramid base=100, stepped bare (0), or stepped
-// with the state read back and every metric of `chainbench run` computed after each step (1).
-void harness_benchmark(benchmark::State& state, const EngineSpec& spec) {
-  const Scene scene = make_scene("pyramid", {"base=100", "steps=10000000"});
+// What the harness adds, on every family and size the engine under test is benchmarked at: the
+// engine stepped bare (metrics:0), or stepped with the state read back and every metric of
+// `chainbench run` computed after each step (metrics:1). Named harness/FAMILY/SIZE/metrics:K, so
+// that scripts/bench_table.py can put the two side by side. The recorder is built before the
+// timing, as `run` builds it before the first step.
+void harness_benchmark(benchmark::State& state, const Family& family, int size,
+                       const EngineSpec& spec) {
+  const Scene scene = make_scene(family.scene, family_sets(family, size));
   const auto engine = make_engine(spec, scene);
   const bool metrics = state.range(0) != 0;
-  MetricsRecorder recorder(scene, MetricSelection{});
+  std::optional<MetricsRecorder> recorder;
+  if (metrics) recorder.emplace(scene, MetricSelection{});
   BodyState before(scene.bodies.size()), after(scene.bodies.size());
   int step = 0;
-  for (; step < 60; ++step)
+  if (metrics) engine->read_state(before);  // bare, it steps exactly as step_benchmark does
+  for (; step < family.warmup; ++step) {
     engine->step(step);
-  engine->read_state(before);
+    if (metrics) {  // the recorder follows the run from its start, as in `run`
+      engine->read_state(after);
+      recorder->observe(before, after, step + 1, false);
+      std::swap(before, after);
+    }
+  }
   for (auto _ : state) {
     engine->step(step++);
     if (metrics) {
       engine->read_state(after);
-      recorder.observe(before, after, step, false);
+      recorder->observe(before, after, step, false);
       std::swap(before, after);
     }
   }
-  state.counters["bodies"] = static_cast<double>(scene.bodies.size());
+  const auto bodies = static_cast<double>(scene.bodies.size());
+  state.counters["bodies"] = bodies;
+  state.counters["per_body"] =
+      benchmark::Counter(bodies * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void register_harness(const EngineSpec& spec, std::size_t max_bodies) {
+  for (const Family& family : benchmark_families()) {
+    for (const int size : family.sizes) {
+      if (family_bodies(family, size) > max_bodies) continue;
+      const Scene sample = make_scene(family.scene, family_sets(family, size));
+      if (!missing_capability(spec, sample).empty()) continue;
+      const std::string name = "harness/" + family.name + "/" + std::to_string(size);
+      auto* b = benchmark::RegisterBenchmark(
+          name.c_str(),
+          [family, size, spec](benchmark::State& s) { harness_benchmark(s, family, size, spec); });
+      b->ArgName("metrics")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+      if (family.window > 0) {
+        b->Iterations(family.window);
+      } else {
+        b->MinTime(0.5);
+      }
+    }
+  }
 }
 
 // Every registered engine's benchmark settings (EngineDef::benchmarks), or, with
@@ -143,13 +179,6 @@ void register_all(const std::string& engine_list) {
   // What the tables compare: the engine under test and the reference, by their labels.
   benchmark::AddCustomContext("chainbench_subject", subject.label());
   benchmark::AddCustomContext("chainbench_reference", default_reference().label());
-  benchmark::RegisterBenchmark("harness/pyramid100/metrics",
-                               [subject](benchmark::State& s) { harness_benchmark(s, subject); })
-      ->Arg(0)
-      ->Arg(1)
-      ->Unit(benchmark::kMillisecond)
-      ->UseRealTime()
-      ->MinTime(0.5);
   // How to build each family's scene, for the tables' accuracy runs (scripts/bench_table.py):
   // "SCENE KEY[,KEY] [KEY=VALUE...]"; which families are moving, and each scaling series' base.
   std::string moving, scaling;
@@ -204,6 +233,10 @@ void register_all(const std::string& engine_list) {
         b->Arg(size);
       if (sizes.size() > 1) b->Complexity(benchmark::oN);
     }
+  }
+  // The harness' cost, at every size the engine under test runs at.
+  for (const auto& [spec, max_bodies] : engines) {
+    if (spec.label() == subject.label()) register_harness(spec, max_bodies);
   }
 }
 

@@ -136,6 +136,15 @@ TEST(MovingScenes, ModernSolverAndBox2dMeetEveryAnswer) {
   }
 }
 
+// A smash wide enough that bodies are renumbered and, later, thrown far enough to be filed again
+// in the broadphase: the refiling once wrote through a slot number from before the renumbering
+// and corrupted the heap (a crash, or under ASan a report). Every answer is met.
+TEST(MovingScenes, WideSmashRenumbersAndRefilesSafely) {
+  const StressCase c{"moving", "smash", {"lanes=250"}, false};
+  const StressVerdict chain = run_stress_case(c, parse_engine_spec("chain"), 300.0);
+  EXPECT_EQ(chain.verdict(), VerdictClass::kOk) << chain.verdict_detail();
+}
+
 TEST(StackWall, IsColumnsOfBoxesAtRest) {
   const Scene s = make_scene("stack_wall", {"cols=500", "height=10"});
   EXPECT_EQ(s.bodies.size(), 5001u);

@@ -22,6 +22,16 @@
 namespace chainbench {
 namespace {
 
+// The part of body i's move in a step that its velocity does not explain, metres; rounding of its
+// position (two units in the last place) counts as 0, so a body at rest reads 0, not 1e-16.
+double energy_free_displacement(const BodyState& before, const BodyState& after, std::size_t i,
+                                double dt) {
+  const double dx = after.position[i].x - before.position[i].x - dt * after.velocity[i].x;
+  const double dy = after.position[i].y - before.position[i].y - dt * after.velocity[i].y;
+  const double d = std::sqrt(dx * dx + dy * dy);  // positions stay far below overflow
+  return below_resolution(d, magnitude(after.position[i])) ? 0.0 : d;
+}
+
 // One unit in the last place of a single-precision coordinate of this magnitude: a float engine
 // far from the origin moves in steps of it.
 // The next float up is the one whose bits are one more (m is finite and not negative), which
@@ -98,9 +108,7 @@ void MetricsRecorder::observe_all(const BodyState& before, const BodyState& afte
                                   bool displacement, bool overlaps) {
   if (displacement) {
     for (const std::size_t i : dynamic_) {
-      const double dx = after.position[i].x - before.position[i].x - dt_ * after.velocity[i].x;
-      const double dy = after.position[i].y - before.position[i].y - dt_ * after.velocity[i].y;
-      const double d = std::sqrt(dx * dx + dy * dy);  // positions stay far below overflow
+      const double d = energy_free_displacement(before, after, i, dt_);
       step_efd_[i] = d;
       efd_total_ += d;
       efd_max_ = std::max(efd_max_, d);
@@ -137,9 +145,7 @@ void MetricsRecorder::observe_some(const BodyState& before, const BodyState& aft
     // Scene order, as a full pass sums them; a body that did not move adds exactly 0.
     for (const std::uint32_t i : moved_) {
       if (!scan_.dynamic(i)) continue;
-      const double dx = after.position[i].x - before.position[i].x - dt_ * after.velocity[i].x;
-      const double dy = after.position[i].y - before.position[i].y - dt_ * after.velocity[i].y;
-      const double d = std::sqrt(dx * dx + dy * dy);
+      const double d = energy_free_displacement(before, after, i, dt_);
       step_efd_[i] = d;
       efd_total_ += d;
       efd_max_ = std::max(efd_max_, d);

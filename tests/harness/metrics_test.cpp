@@ -47,6 +47,20 @@ TEST(Metrics, EnergyFreeDisplacementIsTheMoveVelocityDoesNotExplain) {
   EXPECT_FALSE(r.finite.has_value());
 }
 
+// A body coasting at 3 m/s with dt = 0.1 moves 0.3 m, which in doubles is 0.30000000000000004:
+// that rounding is no push and reads 0, as README says of figures below the arithmetic's
+// resolution; a push of 1e-9 m is real and counts.
+TEST(Metrics, EnergyFreeDisplacementBelowRoundingIsZero) {
+  const Scene s = two_boxes({0.1, 0}, {5, 0});
+  MetricsRecorder m(s, MetricSelection{true, false, false});
+  const BodyState coast = state({{0.1 + 0.1 * 3.0, 0}, {5, 0}}, {{3, 0}, {0, 0}});
+  m.observe(state({{0.1, 0}, {5, 0}}, {{3, 0}, {0, 0}}), coast, 1, true);
+  EXPECT_EQ(*m.result(coast).efd_total, 0.0);
+  const BodyState pushed = state({{0.4 + 0.3 + 1e-9, 0}, {5, 0}}, {{3, 0}, {0, 0}});
+  m.observe(coast, pushed, 2, true);
+  EXPECT_NEAR(*m.result(pushed).efd_total, 1e-9, 1e-15);
+}
+
 double deepest(const Scene& s, const BodyState& st) {
   return MetricsRecorder::deepest_overlap(s, st, 0).depth;
 }

@@ -47,16 +47,18 @@ TEST(Metrics, EnergyFreeDisplacementIsTheMoveVelocityDoesNotExplain) {
   EXPECT_FALSE(r.finite.has_value());
 }
 
-// A body coasting at 3 m/s with dt = 0.1 moves 0.3 m, which in doubles is 0.30000000000000004:
-// that rounding is no push and reads 0, as README says of figures below the arithmetic's
-// resolution; a push of 1e-9 m is real and counts.
+// A body at x = 0.2 coasting at 3 m/s with dt = 0.1 ends at 0.2 + 0.3, and in doubles that minus
+// 0.2 minus 0.3 is -5.6e-17 m: rounding, no push, so it reads 0, as README says of figures below
+// the arithmetic's resolution. A push of 1e-9 m is real and counts.
 TEST(Metrics, EnergyFreeDisplacementBelowRoundingIsZero) {
-  const Scene s = two_boxes({0.1, 0}, {5, 0});
+  const Scene s = two_boxes({0.2, 0}, {5, 0});
   MetricsRecorder m(s, MetricSelection{true, false, false});
-  const BodyState coast = state({{0.1 + 0.1 * 3.0, 0}, {5, 0}}, {{3, 0}, {0, 0}});
-  m.observe(state({{0.1, 0}, {5, 0}}, {{3, 0}, {0, 0}}), coast, 1, true);
+  const BodyState start = state({{0.2, 0}, {5, 0}}, {{3, 0}, {0, 0}});
+  const BodyState coast = state({{0.2 + 0.1 * 3.0, 0}, {5, 0}}, {{3, 0}, {0, 0}});
+  ASSERT_NE(coast.position[0].x - 0.2 - 0.1 * 3.0, 0.0);  // there is rounding to ignore
+  m.observe(start, coast, 1, true);
   EXPECT_EQ(*m.result(coast).efd_total, 0.0);
-  const BodyState pushed = state({{0.4 + 0.3 + 1e-9, 0}, {5, 0}}, {{3, 0}, {0, 0}});
+  const BodyState pushed = state({{coast.position[0].x + 0.3 + 1e-9, 0}, {5, 0}}, {{3, 0}, {0, 0}});
   m.observe(coast, pushed, 2, true);
   EXPECT_NEAR(*m.result(pushed).efd_total, 1e-9, 1e-15);
 }

@@ -1,7 +1,6 @@
 #include "pair_scan.h"
 
 #include <algorithm>
-#include <bit>
 
 namespace chainbench {
 
@@ -23,16 +22,10 @@ PairScan::PairScan(const Scene& scene) : rotated_(scene.rotation) {
     std::nth_element(sizes.begin(), sizes.begin() + k, sizes.end());
     cell = std::max(2.0 * sizes[static_cast<std::size_t>(k)], 1e-9);
   }
-  inv_cell_ = 1.0 / cell;
+  table_ = CellTable(cell);
   swept_.resize(n);
   live_.assign(n, 0);
   giant_.assign(n, 0);
-}
-
-std::uint64_t PairScan::bucket(std::int64_t cx, std::int64_t cy) const {
-  const auto h = static_cast<std::uint64_t>(cx) * 0x9E3779B97F4A7C15ull ^
-                 static_cast<std::uint64_t>(cy) * 0xC2B2AE3D27D4EB4Full;
-  return (h ^ (h >> 29)) & mask_;
 }
 
 void PairScan::add(std::size_t i, const BodyState& before, const BodyState& after) {
@@ -44,64 +37,37 @@ void PairScan::add(std::size_t i, const BodyState& before, const BodyState& afte
   const Box box{std::min(p.x, q.x) - r.x, std::min(p.y, q.y) - r.y, std::max(p.x, q.x) + r.x,
                 std::max(p.y, q.y) + r.y};
   swept_[i] = box;
-  const std::int64_t cx0 = cell(box.x0), cx1 = cell(box.x1);
-  const std::int64_t cy0 = cell(box.y0), cy1 = cell(box.y1);
-  // Compared in double: a box of a huge world can span more cells than an int64 holds.
-  const double cells = (static_cast<double>(cx1) - static_cast<double>(cx0) + 1.0) *
-                       (static_cast<double>(cy1) - static_cast<double>(cy0) + 1.0);
-  if (cells > static_cast<double>(kMaxCells)) {
+  const CellTable::Cells c = table_.cover(box);
+  if (c.count() > CellTable::kMaxCells) {
     giant_[i] = 1;
     giants_.push_back(static_cast<std::uint32_t>(i));
     return;
   }
   bounds_ = {std::min(bounds_.x0, box.x0), std::min(bounds_.y0, box.y0),
              std::max(bounds_.x1, box.x1), std::max(bounds_.y1, box.y1)};
-  for (std::int64_t cy = cy0; cy <= cy1; ++cy) {
-    for (std::int64_t cx = cx0; cx <= cx1; ++cx)
-      entries_.push_back({static_cast<std::uint32_t>(i), cx, cy});
-  }
+  table_.add(static_cast<std::uint32_t>(i), c);
 }
 
 void PairScan::build(const BodyState& before, const BodyState& after) {
-  entries_.clear();
+  table_.clear();
   giants_.clear();
   subset_ = false;
   bounds_ = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (std::size_t i = 0; i < half_.size(); ++i)
     add(i, before, after);
-  sort_entries();
+  table_.sort();
 }
 
 void PairScan::build(const BodyState& before, const BodyState& after,
                      std::span<const std::uint32_t> members) {
-  entries_.clear();
+  table_.clear();
   giants_.clear();
   subset_ = true;
   members_ = members;
   bounds_ = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (const std::uint32_t i : members)
     add(i, before, after);
-  sort_entries();
-}
-
-void PairScan::sort_entries() {
-  // Counting sort by bucket; stable, so bodies keep their scene order within a bucket. Twice as
-  // many buckets as entries: most lookups of a body at rest meet an empty one, and the table
-  // stays small enough for the cache.
-  const std::uint64_t table = std::bit_ceil(std::max<std::uint64_t>(64, 2 * entries_.size()));
-  mask_ = table - 1;
-  start_.assign(table + 1, 0);
-  for (const Entry& e : entries_)
-    ++start_[bucket(e.cx, e.cy) + 1];
-  for (std::size_t b = 1; b < start_.size(); ++b)
-    start_[b] += start_[b - 1];
-  sorted_.resize(entries_.size());
-  std::vector<std::uint32_t>& cursor = start_;  // start_[b] is the fill cursor of bucket b ...
-  for (const Entry& e : entries_)
-    sorted_[cursor[bucket(e.cx, e.cy)]++] = e;
-  for (std::size_t b = start_.size() - 1; b > 0; --b)  // ... and is shifted back afterwards
-    start_[b] = start_[b - 1];
-  start_[0] = 0;
+  table_.sort();
 }
 
 double PairScan::depth(const BodyState& s, std::size_t i, std::size_t j) const {

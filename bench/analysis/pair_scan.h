@@ -3,16 +3,17 @@
 // was before the step to where it is after, overlap or touch. Penetration, tunnelling and the
 // no_overlap expectation are all measured on these pairs, so a step costs one pass.
 //
-// A uniform grid about the size of most dynamic boxes holds every swept box in each cell it
-// covers; a pair met in several cells is reported by the one cell holding the lower-left corner of
-// the two boxes' intersection. A box that covers more than kMaxCells cells (a floor of a large
-// world, a body moving far in one step) is tested against every other box instead.
+// A uniform grid (a CellTable) with cells about the size of most dynamic boxes holds every swept
+// box in each cell it covers, and reports a pair met in several cells once. A box that covers more
+// than CellTable::kMaxCells cells (a floor of a large world, a body moving far in one step) is
+// tested against every other box instead.
 //
 // A scan may also hold only some of the bodies (those that moved in a step): for_each_pair then
 // finds the pairs among them, and for_each_touching those between them and any other body at
 // rest, so that a step in which few bodies moved costs little more than a pass over the rest.
 #pragma once
 
+#include "cell_table.h"
 #include "engine.h"
 #include "scene.h"
 
@@ -52,23 +53,9 @@ class PairScan {
   bool rotated() const { return rotated_; }
 
  private:
-  static constexpr std::int64_t kMaxCells = 1024;
-  struct Box {
-    double x0, y0, x1, y1;
-  };
-  struct Entry {
-    std::uint32_t body;
-    std::int64_t cx, cy;
-  };
-  std::int64_t cell(double v) const {
-    return static_cast<std::int64_t>(std::floor(std::clamp(v * inv_cell_, -4.0e18, 4.0e18)));
-  }
-  std::uint64_t bucket(std::int64_t cx, std::int64_t cy) const;
-  static bool touch(const Box& a, const Box& b) {
-    return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1;
-  }
+  using Box = CellTable::Box;
+  static bool touch(const Box& a, const Box& b) { return CellTable::touch(a, b); }
   void add(std::size_t i, const BodyState& before, const BodyState& after);
-  void sort_entries();
   template <class Fn>
   void report(std::uint32_t i, std::uint32_t j, Fn& fn) const {
     if (dynamic_[i] | dynamic_[j]) fn(std::min(i, j), std::max(i, j));
@@ -78,14 +65,11 @@ class PairScan {
   std::vector<Vec2d> reach_;  // half extents of the box's bounding box at any angle
   std::vector<std::uint8_t> dynamic_;
   bool rotated_ = false;
-  double inv_cell_ = 1.0;
   std::vector<Box> swept_;
   std::vector<std::uint8_t> live_;   // finite position, in the scan
   std::vector<std::uint8_t> giant_;  // tested against every other box
   std::vector<std::uint32_t> giants_;
-  std::vector<Entry> entries_, sorted_;
-  std::vector<std::uint32_t> start_;  // per bucket, into sorted_
-  std::uint64_t mask_ = 0;
+  CellTable table_;      // the held boxes that are not giants
   bool subset_ = false;  // holds members_ only, not every body
   std::span<const std::uint32_t> members_;
   Box bounds_{};  // of every held box that is not a giant
@@ -93,24 +77,8 @@ class PairScan {
 
 template <class Fn>
 void PairScan::for_each_pair(Fn&& fn) const {
-  // Pairs within a bucket of the same cell, each reported by the cell holding the lower-left
-  // corner of the two boxes' intersection.
-  // Bucket by bucket, walking the entries rather than the (mostly empty) table.
-  for (std::uint32_t first = 0, last = 0; first < sorted_.size(); first = last) {
-    last = start_[bucket(sorted_[first].cx, sorted_[first].cy) + 1];
-    for (std::uint32_t k = first; k < last; ++k) {
-      const Entry& e = sorted_[k];
-      const Box& a = swept_[e.body];
-      for (std::uint32_t m = k + 1; m < last; ++m) {
-        const Entry& f = sorted_[m];
-        if (f.cx != e.cx || f.cy != e.cy || f.body == e.body) continue;
-        const Box& c = swept_[f.body];
-        if (!touch(a, c)) continue;
-        if (cell(std::max(a.x0, c.x0)) != e.cx || cell(std::max(a.y0, c.y0)) != e.cy) continue;
-        report(e.body, f.body, fn);
-      }
-    }
-  }
+  // Pairs sharing a cell, from the table, then the giants, which it does not hold.
+  table_.for_each_pair(swept_, [&](std::uint32_t i, std::uint32_t j) { report(i, j, fn); });
   // Giant boxes against every other live box held, each pair once.
   auto against = [&](std::uint32_t g, std::uint32_t j) {
     if (j == g || !live_[j] || (giant_[j] && j < g)) return;
@@ -137,28 +105,16 @@ void PairScan::for_each_touching(std::size_t x, const BodyState& s, Fn&& fn) con
     if (g != held && touch(q, swept_[g])) report(g, held, fn);
   }
   if (!touch(q, bounds_)) return;
-  const std::int64_t cx0 = cell(q.x0), cx1 = cell(q.x1), cy0 = cell(q.y0), cy1 = cell(q.y1);
-  const double cells = (static_cast<double>(cx1) - static_cast<double>(cx0) + 1.0) *
-                       (static_cast<double>(cy1) - static_cast<double>(cy0) + 1.0);
-  if (cells > static_cast<double>(kMaxCells)) {  // a giant at rest: against every box held
+  const CellTable::Cells c = table_.cover(q);
+  if (c.count() > CellTable::kMaxCells) {  // a giant at rest: against every box held
     for (const std::uint32_t j : members_) {
       if (j != held && live_[j] && !giant_[j] && touch(q, swept_[j])) report(j, held, fn);
     }
     return;
   }
-  for (std::int64_t cy = cy0; cy <= cy1; ++cy) {
-    for (std::int64_t cx = cx0; cx <= cx1; ++cx) {
-      const std::uint64_t b = bucket(cx, cy);
-      for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k) {
-        const Entry& e = sorted_[k];
-        if (e.cx != cx || e.cy != cy || e.body == held) continue;
-        const Box& a = swept_[e.body];
-        if (!touch(q, a)) continue;
-        if (cell(std::max(a.x0, q.x0)) != cx || cell(std::max(a.y0, q.y0)) != cy) continue;
-        report(e.body, held, fn);
-      }
-    }
-  }
+  table_.for_each_in_cells(q, c, swept_, [&](std::uint32_t j) {
+    if (j != held) report(j, held, fn);
+  });
 }
 
 }  // namespace chainbench

@@ -70,7 +70,7 @@ say "sweep"
 if [[ $bench -eq 1 ]]; then
   say "benchmark subset"
   build/bin/chainbench_bench \
-    --benchmark_filter='^(pyramid/|random_pile/[^/]+/(1000|10000|100000)/|harness)' \
+    --benchmark_filter='^(pyramid/|random_pile/[^/]+/(1000|10000|100000)/|harness/(pyramid|random_pile/(1000|10000))/)' \
     --benchmark_out="$out/bench_quick.json" --benchmark_out_format=json > "$out/bench_quick.txt"
 fi
 

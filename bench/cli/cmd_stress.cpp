@@ -69,6 +69,9 @@ int run(const StressArgs& a) {
   if (cases.empty()) throw InputError("stress: no case matches --filter \"" + a.filter + "\"");
   // Runs are numbered case by case, engine by engine; a shard runs its part of them.
   const Shard shard = a.shard.empty() ? Shard{} : parse_shard(a.shard);
+  // A part is only of use merged, and merge reads the parts' JSON.
+  if (!shard.whole() && a.json.empty())
+    throw InputError("--shard " + a.shard + ": give --json FILE: a part is of use only to merge");
   const std::size_t units = cases.size() * engines.size();
   std::vector<std::size_t> ran;
   for (std::size_t u = 0; u < units; ++u) {

@@ -76,6 +76,9 @@ int run(const SweepArgs& a) {
       a.reference.empty() ? accurate_reference() : parse_engine_spec(a.reference);
   // Points are numbered over the scenes in the order they run; a shard runs its part of them.
   const Shard shard = a.shard.empty() ? Shard{} : parse_shard(a.shard);
+  // A part is only of use merged, and merge reads the parts' JSON.
+  if (!shard.whole() && a.json.empty())
+    throw InputError("--shard " + a.shard + ": give --json FILE: a part is of use only to merge");
   std::string whole = "sweep\nreference " + reference.str() + "\n";
   std::vector<std::vector<bool>> include(scenes.size());
   std::vector<std::vector<std::size_t>> units(scenes.size());

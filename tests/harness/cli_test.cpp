@@ -162,7 +162,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"run --scene stack --engines ''", "no engine"},
         BadCall{"run --scene stack --engines chain,chain", "chain given twice"},
         BadCall{"run --scene stack --set n=5 --set n=6", "--set n: given twice"},
-        BadCall{"run --scene stack --set steps=5 --steps 6", "--steps sets it too"}),
+        BadCall{"run --scene stack --set steps=5 --steps 6", "--steps sets it too"},
+        BadCall{"sweep --scene stack --shard 1/2", "give --json FILE"},
+        BadCall{"stress --quick --shard 1/2", "give --json FILE"}),
     [](const auto& info) { return "Case" + std::to_string(info.index); });
 
 TEST_P(RefusedCall, ExitsWithStatusTwoAndSaysWhy) {

@@ -136,7 +136,25 @@ def plotting(module):
     return importlib.import_module(f"plotting.{module}")
 
 
-class PlotTest(unittest.TestCase):
+class Drawing:
+    """For a TestCase with a scratch folder `self.dir`: write input files, and draw figures
+    without saving them."""
+
+    def write(self, name, text):
+        (self.dir / name).write_text(text, encoding="utf-8")
+        return self.dir / name
+
+    def drawn(self, module, function, *args):
+        """The figure that plotting.MODULE.FUNCTION(*args) draws last, not written to a file."""
+        mod = plotting(module)
+        with mock.patch.object(mod, "save") as save:
+            getattr(mod, function)(*args)
+        fig = save.call_args.args[0]
+        self.addCleanup(plotting("common").pyplot().close, fig)
+        return fig
+
+
+class PlotTest(Drawing, unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.tmp = tempfile.TemporaryDirectory()
@@ -186,19 +204,6 @@ class PlotTest(unittest.TestCase):
         self.assertNotIn("Traceback", result.stderr)
         self.assertEqual(len(result.stderr.strip().splitlines()), 1, result.stderr)
         self.assertEqual(result.stdout, "")
-
-    def write(self, name, text):
-        (self.dir / name).write_text(text, encoding="utf-8")
-        return self.dir / name
-
-    def drawn(self, module, function, *args):
-        """The figure that plotting.MODULE.FUNCTION(*args) draws last, not written to a file."""
-        mod = plotting(module)
-        with mock.patch.object(mod, "save") as save:
-            getattr(mod, function)(*args)
-        fig = save.call_args.args[0]
-        self.addCleanup(plotting("common").pyplot().close, fig)
-        return fig
 
     def test_sweep(self):
         self.check_plots("sweep", ["sweep_push_row", "sweep_my_scene"])

@@ -10,30 +10,16 @@ import sys
 import tempfile
 import unittest
 from pathlib import Path
-from unittest import mock
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from plot_test import BOX2D, MODERN, SEED, label, plotting  # noqa: E402
+from plot_test import BOX2D, MODERN, SEED, Drawing, label, plotting  # noqa: E402
 
 
-class StatesTest(unittest.TestCase):
+class StatesTest(Drawing, unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
         self.addCleanup(self.tmp.cleanup)
         self.dir = Path(self.tmp.name)
-
-    def write(self, name, text):
-        (self.dir / name).write_text(text, encoding="utf-8")
-        return self.dir / name
-
-    def drawn(self, module, function, *args):
-        """The figure that plotting.MODULE.FUNCTION(*args) draws last, not written to a file."""
-        mod = plotting(module)
-        with mock.patch.object(mod, "save") as save:
-            getattr(mod, function)(*args)
-        fig = save.call_args.args[0]
-        self.addCleanup(plotting("common").pyplot().close, fig)
-        return fig
 
     def squeeze_run(self, offsets):
         """A box between a 1 km floor and a lift, a ceiling far above, each engine's box moved by

@@ -12,7 +12,7 @@ BoxGrid::BoxGrid(std::span<const Box> boxes, double cell_size)
     }
     table_.add(static_cast<std::uint32_t>(k), c);
   }
-  table_.sort();
+  table_.sort(boxes_);
 }
 
 }  // namespace chainbench

@@ -40,7 +40,7 @@ void BoxGrid::for_each_touching(const Box& q, Fn&& fn) const {
     }
     return;
   }
-  table_.for_each_in_cells(q, c, boxes_, [&](std::uint32_t k) { fn(static_cast<std::size_t>(k)); });
+  table_.for_each_in_cells(q, c, [&](std::uint32_t k) { fn(static_cast<std::size_t>(k)); });
   for (const std::uint32_t g : giants_) {
     if (CellTable::touch(q, boxes_[g])) fn(static_cast<std::size_t>(g));
   }

@@ -1,10 +1,14 @@
 // The hashed uniform grid shared by BoxGrid and PairScan: boxes held in every cell they cover, and
 // the walks that find which held boxes touch a query box, or each other, each pair once.
 //
-// Cells are hashed into a power-of-two table of buckets, so the grid is unbounded and costs memory
-// for the occupied cells only; entries of other cells that share a bucket are skipped. A pair met
-// in several cells is reported by the one cell holding the lower-left corner of the two boxes'
-// intersection, so once, without a set of pairs already seen.
+// Where the occupied cells span a range no bigger than a few times the entries, each cell of that
+// range is a bucket of its own, row by row, so that neighbouring buckets hold neighbouring boxes.
+// Otherwise (a few bodies flung far away) cells are hashed into a power-of-two table of buckets,
+// so the grid is unbounded and costs memory for the occupied cells only; entries of other cells
+// that share a bucket are skipped. Each entry keeps a copy of its box, in bucket order, so that
+// a walk reads the boxes it tests front to back. A pair met in several cells is reported by the
+// one cell holding the lower-left corner of the two boxes' intersection, so once, without a set
+// of pairs already seen.
 //
 // The table owns its buffers and refills them in place: once warmed up to a scene's size, a
 // rebuild allocates nothing (PairScan rebuilds every step).
@@ -46,8 +50,8 @@ class CellTable {
   }
   Cells cover(const Box& b) const { return {cell(b.x0), cell(b.y0), cell(b.x1), cell(b.y1)}; }
 
-  // Building: clear(), add() every box to hold, then sort(); until the next clear() the walks
-  // below see the boxes added.
+  // Building: clear(), add() every box to hold, then sort(boxes) with `boxes[k]` the box held as
+  // k; until the next clear() the walks below see those boxes.
   void clear() { entries_.clear(); }
   // Holds box `index` in each of the cells `c` (from cover(); keep their count small).
   void add(std::uint32_t index, const Cells& c) {
@@ -56,16 +60,16 @@ class CellTable {
         entries_.push_back({index, cx, cy});
     }
   }
-  void sort();
+  void sort(std::span<const Box> boxes);
 
-  // fn(k) once for every held box k that touches `q` (covering the cells `c`, from cover(q)), with
-  // `boxes[k]` the box held as k. In order of the cells (row by row), then of addition.
+  // fn(k) once for every held box k that touches `q` (covering the cells `c`, from cover(q)). In
+  // order of the cells (row by row), then of addition.
   template <class Fn>
-  void for_each_in_cells(const Box& q, const Cells& c, std::span<const Box> boxes, Fn&& fn) const;
+  void for_each_in_cells(const Box& q, Cells c, Fn&& fn) const;
   // fn(k, m) once for every two held boxes that touch, k added before m in a shared cell. Bucket by
   // bucket, then in order of addition.
   template <class Fn>
-  void for_each_pair(std::span<const Box> boxes, Fn&& fn) const;
+  void for_each_pair(Fn&& fn) const;
 
  private:
   struct Entry {
@@ -73,6 +77,10 @@ class CellTable {
     std::int64_t cx, cy;
   };
   std::uint64_t bucket(std::int64_t cx, std::int64_t cy) const {
+    if (dense_) {
+      return static_cast<std::uint64_t>(cy - range_.y0) * static_cast<std::uint64_t>(width_) +
+             static_cast<std::uint64_t>(cx - range_.x0);
+    }
     const auto h = static_cast<std::uint64_t>(cx) * 0x9E3779B97F4A7C15ull ^
                    static_cast<std::uint64_t>(cy) * 0xC2B2AE3D27D4EB4Full;
     return (h ^ (h >> 29)) & mask_;
@@ -86,20 +94,28 @@ class CellTable {
   double inv_cell_;
   std::vector<Entry> entries_;        // as added
   std::vector<Entry> sorted_;         // by bucket
+  std::vector<Box> sorted_box_;       // the box of each entry of sorted_
   std::vector<std::uint32_t> start_;  // per bucket, into sorted_
-  std::uint64_t mask_ = 0;
+  std::uint64_t mask_ = 0;            // hashed buckets
+  bool dense_ = false;                // a bucket per cell of range_
+  Cells range_{};                     // of the occupied cells (dense_)
+  std::int64_t width_ = 0;            // cells per row of range_
 };
 
 template <class Fn>
-void CellTable::for_each_in_cells(const Box& q, const Cells& c, std::span<const Box> boxes,
-                                  Fn&& fn) const {
+void CellTable::for_each_in_cells(const Box& q, Cells c, Fn&& fn) const {
+  if (sorted_.empty()) return;
+  if (dense_) {  // no cell outside the range holds anything
+    c = {std::max(c.x0, range_.x0), std::max(c.y0, range_.y0), std::min(c.x1, range_.x1),
+         std::min(c.y1, range_.y1)};
+  }
   for (std::int64_t cy = c.y0; cy <= c.y1; ++cy) {
     for (std::int64_t cx = c.x0; cx <= c.x1; ++cx) {
       const std::uint64_t b = bucket(cx, cy);
       for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k) {
         const Entry& e = sorted_[k];
         if (e.cx != cx || e.cy != cy) continue;  // another cell in the same bucket
-        const Box& a = boxes[e.index];
+        const Box& a = sorted_box_[k];
         if (touch(q, a) && reports(a, q, cx, cy)) fn(e.index);
       }
     }
@@ -107,17 +123,17 @@ void CellTable::for_each_in_cells(const Box& q, const Cells& c, std::span<const 
 }
 
 template <class Fn>
-void CellTable::for_each_pair(std::span<const Box> boxes, Fn&& fn) const {
+void CellTable::for_each_pair(Fn&& fn) const {
   // Walking the entries rather than the (mostly empty) table of buckets.
   for (std::uint32_t first = 0, last = 0; first < sorted_.size(); first = last) {
     last = start_[bucket(sorted_[first].cx, sorted_[first].cy) + 1];
     for (std::uint32_t k = first; k < last; ++k) {
       const Entry& e = sorted_[k];
-      const Box& a = boxes[e.index];
+      const Box& a = sorted_box_[k];
       for (std::uint32_t m = k + 1; m < last; ++m) {
         const Entry& f = sorted_[m];
         if (f.cx != e.cx || f.cy != e.cy || f.index == e.index) continue;
-        const Box& b = boxes[f.index];
+        const Box& b = sorted_box_[m];
         if (touch(a, b) && reports(a, b, e.cx, e.cy)) fn(e.index, f.index);
       }
     }

@@ -78,6 +78,7 @@ MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
       dt_(scene.dt),
       bounds_(motion_bounds(scene)),
       scan_(scene),
+      cache_(scene),
       tunnels_(scene) {
   const std::size_t n = scene.bodies.size();
   for (std::size_t i = 0; i < n; ++i) {

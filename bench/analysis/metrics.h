@@ -4,6 +4,7 @@
 
 #include "engine.h"
 #include "motion_bounds.h"
+#include "pair_cache.h"
 #include "pair_scan.h"
 #include "scene.h"
 #include "tunnelling.h"
@@ -80,8 +81,8 @@ class MetricsRecorder {
   // last_deepest() when `depth` is true or penetration is selected.
   //
   // The cost follows what moved: a step that moved nothing costs one pass comparing the two
-  // states, and one that moved a few bodies a pass more, looking each body at rest up in a grid of
-  // the moving ones (metrics_observe.cpp). The figures are those of a full scan.
+  // states, and one that moved some bodies a pass more over the pairs listed for them by a
+  // PairCache (metrics_observe.cpp). The figures are those of a full scan.
   void observe(const BodyState& before, const BodyState& after, int step, bool per_body,
                bool depth = false);
   // Every step from now on scans every body: the check the shortcuts are tested against.
@@ -127,6 +128,7 @@ class MetricsRecorder {
   MotionBounds bounds_;
   std::vector<std::size_t> dynamic_;
   PairScan scan_;
+  PairCache cache_;  // the pairs of a step in which most bodies moved
   TunnelWatch tunnels_;
   std::vector<double> step_efd_, step_pen_;
   std::vector<double> slack_;  // per body: what is left of its allowance, m

@@ -4,11 +4,10 @@
 // on pairs of bodies whose boxes touch. A pair of bodies that did not move in the step overlaps as
 // it did after the step before, passes through nothing, and (until the last step, where the
 // tolerances change) cannot become the worst overlap, which it already was or was not. So a step
-// re-judges only the pairs with a moved body: those among the moved bodies, from a grid of their
-// swept boxes, and those between a moved body and one at rest, by looking each body at rest up in
-// that grid. The pairs that overlapped are kept from step to step, so that the step's deepest
+// re-judges only the pairs with a moved body, which a PairCache lists from each moved body's
+// candidates. The pairs that overlapped are kept from step to step, so that the step's deepest
 // overlap and each body's deepest are taken over all of them. When more than a quarter of the
-// bodies moved, one scan of every body is cheaper, and is done instead.
+// bodies moved, judging every pair the cache lists is cheaper, and is done instead.
 //
 // Where several pairs tie (the same depth, or the same ratio to their tolerance in one step) the
 // lowest pair is named, so that the figures do not depend on the order pairs are met in.
@@ -118,10 +117,16 @@ void MetricsRecorder::observe_all(const BodyState& before, const BodyState& afte
     efd_written_.clear();
   }
   if (overlaps) {
-    scan_.build(before, after);
     fresh_.clear();
     std::fill(step_pen_.begin(), step_pen_.end(), 0.0);
-    scan_.for_each_pair([&](std::size_t i, std::size_t j) { visit(before, after, i, j, step); });
+    auto judge = [&](std::size_t i, std::size_t j) { visit(before, after, i, j, step); };
+    if (every_body_) {
+      scan_.build(before, after);
+      scan_.for_each_pair(judge);
+      cache_.invalidate();
+    } else {
+      cache_.for_each_pair(before, after, judge);
+    }
     if (sel_.stability) tunnels_.end_step();
     settle(step);
   }
@@ -163,12 +168,9 @@ void MetricsRecorder::observe_some(const BodyState& before, const BodyState& aft
       if (!active_[o.a] && !active_[o.b]) fresh_.push_back(o);
     }
     if (sel_.stability) tunnels_.carry(after, active_);
-    scan_.build(before, after, moved_);
-    auto judge = [&](std::size_t i, std::size_t j) { visit(before, after, i, j, step); };
-    scan_.for_each_pair(judge);
-    for (std::size_t x = 0; x < active_.size(); ++x) {
-      if (!active_[x]) scan_.for_each_touching(x, after, judge);
-    }
+    cache_.for_each_pair_of(before, after, moved_, active_, [&](std::size_t i, std::size_t j) {
+      visit(before, after, i, j, step);
+    });
     if (sel_.stability) tunnels_.end_step();
     settle(step);
   }

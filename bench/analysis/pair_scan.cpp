@@ -22,20 +22,32 @@ PairScan::PairScan(const Scene& scene) : rotated_(scene.rotation) {
     std::nth_element(sizes.begin(), sizes.begin() + k, sizes.end());
     cell = std::max(2.0 * sizes[static_cast<std::size_t>(k)], 1e-9);
   }
+  cell_ = cell;
   table_ = CellTable(cell);
   swept_.resize(n);
   live_.assign(n, 0);
   giant_.assign(n, 0);
 }
 
-void PairScan::add(std::size_t i, const BodyState& before, const BodyState& after) {
+bool PairScan::swept(std::size_t i, const BodyState& before, const BodyState& after,
+                     Box& out) const {
   const Vec2d p = before.position[i], q = after.position[i];
-  live_[i] = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(q.x) && std::isfinite(q.y);
-  giant_[i] = 0;
-  if (!live_[i]) return;
+  if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(q.x) && std::isfinite(q.y)))
+    return false;
   const Vec2d r = reach_[i];
-  const Box box{std::min(p.x, q.x) - r.x, std::min(p.y, q.y) - r.y, std::max(p.x, q.x) + r.x,
-                std::max(p.y, q.y) + r.y};
+  out = {std::min(p.x, q.x) - r.x, std::min(p.y, q.y) - r.y, std::max(p.x, q.x) + r.x,
+         std::max(p.y, q.y) + r.y};
+  return true;
+}
+
+void PairScan::add(std::size_t i, const BodyState& before, const BodyState& after) {
+  Box box;
+  live_[i] = swept(i, before, after, box);
+  giant_[i] = 0;
+  if (live_[i]) file(i, box);
+}
+
+void PairScan::file(std::size_t i, const Box& box) {
   swept_[i] = box;
   const CellTable::Cells c = table_.cover(box);
   if (c.count() > CellTable::kMaxCells) {
@@ -43,31 +55,26 @@ void PairScan::add(std::size_t i, const BodyState& before, const BodyState& afte
     giants_.push_back(static_cast<std::uint32_t>(i));
     return;
   }
-  bounds_ = {std::min(bounds_.x0, box.x0), std::min(bounds_.y0, box.y0),
-             std::max(bounds_.x1, box.x1), std::max(bounds_.y1, box.y1)};
   table_.add(static_cast<std::uint32_t>(i), c);
 }
 
 void PairScan::build(const BodyState& before, const BodyState& after) {
   table_.clear();
   giants_.clear();
-  subset_ = false;
-  bounds_ = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (std::size_t i = 0; i < half_.size(); ++i)
     add(i, before, after);
-  table_.sort();
+  table_.sort(swept_);
 }
 
-void PairScan::build(const BodyState& before, const BodyState& after,
-                     std::span<const std::uint32_t> members) {
+void PairScan::build(std::span<const Box> boxes, std::span<const std::uint8_t> live) {
   table_.clear();
   giants_.clear();
-  subset_ = true;
-  members_ = members;
-  bounds_ = {HUGE_VAL, HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (const std::uint32_t i : members)
-    add(i, before, after);
-  table_.sort();
+  for (std::size_t i = 0; i < half_.size(); ++i) {
+    live_[i] = live[i];
+    giant_[i] = 0;
+    if (live_[i]) file(i, boxes[i]);
+  }
+  table_.sort(swept_);
 }
 
 double PairScan::depth(const BodyState& s, std::size_t i, std::size_t j) const {

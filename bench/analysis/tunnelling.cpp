@@ -1,6 +1,7 @@
 #include "tunnelling.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -56,9 +57,23 @@ TunnelWatch::TunnelWatch(const Scene& scene) {
 }
 
 const TunnelWatch::Inside* TunnelWatch::find(std::uint64_t pair) const {
-  const auto it = std::lower_bound(inside_.begin(), inside_.end(), pair,
-                                   [](const Inside& p, std::uint64_t key) { return p.pair < key; });
-  return it != inside_.end() && it->pair == pair ? &*it : nullptr;
+  if (inside_.empty()) return nullptr;
+  for (std::size_t k = home(pair);; k = (k + 1) & (index_.size() - 1)) {
+    const std::uint32_t at = index_[k];
+    if (at == 0) return nullptr;
+    if (inside_[at - 1].pair == pair) return &inside_[at - 1];
+  }
+}
+
+void TunnelWatch::index() {
+  const std::size_t size = std::bit_ceil(std::max<std::size_t>(16, 2 * inside_.size()));
+  index_.assign(size, 0);
+  for (std::size_t at = 0; at < inside_.size(); ++at) {
+    std::size_t k = home(inside_[at].pair);
+    while (index_[k] != 0)
+      k = (k + 1) & (size - 1);
+    index_[k] = static_cast<std::uint32_t>(at + 1);
+  }
 }
 
 bool TunnelWatch::deep(std::size_t i, std::size_t j, Vec2d r0, Vec2d r1, int axis) const {
@@ -147,10 +162,11 @@ void TunnelWatch::carry(const BodyState& s, std::span<const std::uint8_t> moved)
 
 void TunnelWatch::end_step() {
   held_ = false;
-  std::sort(next_.begin(), next_.end(),
-            [](const Inside& a, const Inside& b) { return a.pair < b.pair; });
+  // No figure depends on the order of inside_: first() is the lowest pair of its step, and
+  // every other use of a pair is its own.
   inside_.swap(next_);
   next_.clear();
+  index();
 }
 
 }  // namespace chainbench

@@ -187,6 +187,27 @@ void World::read_state(Span<const BodyId> ids, Span<Vec2> positions, Span<Vec2> 
   }
 }
 
+void World::read_all(Span<BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities) const {
+  const detail::Bodies& b = impl_->bodies;
+  const std::size_t n = b.size();
+  if ((!ids.empty() && ids.size() < n) || (!positions.empty() && positions.size() < n) ||
+      (!velocities.empty() && velocities.size() < n)) {
+    throw std::invalid_argument("read_all: an output span is shorter than body_count()");
+  }
+  if (!ids.empty()) {
+    for (std::size_t s = 0; s < n; ++s)
+      ids[s] = BodyId{b.id[s]};
+  }
+  if (!positions.empty()) {
+    for (std::size_t s = 0; s < n; ++s)
+      positions[s] = {b.box[s].center[0], b.box[s].center[1]};
+  }
+  if (!velocities.empty()) {
+    for (std::size_t s = 0; s < n; ++s)
+      velocities[s] = {b.vx[s], b.vy[s]};
+  }
+}
+
 void World::step(double dt) {
   if (!std::isfinite(dt) || dt <= 0.0) {
     throw std::invalid_argument("step: dt must be finite and > 0, got " + number(dt));

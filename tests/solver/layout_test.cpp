@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <vector>
@@ -144,6 +145,43 @@ TEST(Layout, BodiesMovedByARenumberingKeepTheirState) {
   // Momentum 1 * 2 + 5 * (-1) = -3 kg m/s before they met, shared after: -0.5 m/s each.
   EXPECT_NEAR(w.velocity(ids[left]).x, -0.5, 1e-12);
   EXPECT_NEAR(w.velocity(ids[left + 1]).x, -0.5, 1e-12);
+}
+
+// read_all walks the storage order a renumbering set: every body is listed once, with the state
+// position() and velocity() give for its id.
+TEST(Layout, ReadAllListsEveryBodyOnceWithItsState) {
+  World w(world_def(Variant::kModern, VelocityRule::kInelastic));
+  const std::vector<BodyId> ids = create_all(w, columns(0.05));
+  for (int s = 0; s < 40; ++s)
+    w.step(kDt);
+  const std::size_t n = w.body_count();
+  std::vector<BodyId> stored(n);
+  std::vector<Vec2> p(n), v(n);
+  w.read_all(stored, p, v);
+  std::vector<int> seen(ids.size(), 0);
+  bool reordered = false;
+  for (std::size_t k = 0; k < n; ++k) {
+    ASSERT_LT(stored[k].value, seen.size());
+    ++seen[stored[k].value];
+    reordered = reordered || stored[k] != ids[k];
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(p[k].x),
+              std::bit_cast<std::uint64_t>(w.position(stored[k]).x));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(p[k].y),
+              std::bit_cast<std::uint64_t>(w.position(stored[k]).y));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(v[k].x),
+              std::bit_cast<std::uint64_t>(w.velocity(stored[k]).x));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(v[k].y),
+              std::bit_cast<std::uint64_t>(w.velocity(stored[k]).y));
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), static_cast<std::ptrdiff_t>(n));
+  EXPECT_TRUE(reordered) << "the pile was expected to be stored in an order of its own";
+  // Outputs may be skipped; one shorter than the world is refused before anything is written.
+  std::vector<Vec2> only(n);
+  w.read_all({}, only, {});
+  EXPECT_EQ(only[0].x, p[0].x);
+  std::vector<Vec2> short_out(n - 1, Vec2{7.0, 7.0});
+  EXPECT_THROW(w.read_all(stored, short_out, {}), std::invalid_argument);
+  EXPECT_EQ(short_out[0].x, 7.0);
 }
 
 // A game that adds a body every step makes the solver sort its bodies again every step; it is

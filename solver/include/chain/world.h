@@ -171,6 +171,12 @@ class World {
   // skip it. Throws std::invalid_argument for a non-empty output shorter than ids (before
   // writing anything) or an unknown id (after writing the entries before it).
   void read_state(Span<const BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities) const;
+  // Every body's id, centre (m) and velocity (m/s), entry k of each output for the same body, in
+  // the order the world stores them (it changes when the world renumbers its bodies): one pass
+  // through memory, where read_state() looks each id up. Any output may be empty to skip it.
+  // Throws std::invalid_argument for a non-empty output shorter than body_count(), before
+  // writing anything.
+  void read_all(Span<BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities) const;
 
   // Advances by dt seconds. Throws std::invalid_argument unless dt is finite and > 0; any dt is
   // valid, and fast bodies are swept whatever it is (modern).

@@ -76,7 +76,8 @@ class MetricsRecorder {
  public:
   MetricsRecorder(const Scene& scene, MetricSelection selection);
   // Call after every step with the state before and after it and the step's number (1 for the
-  // first step); `before` is the `after` of the previous call (or the initial state). Fills
+  // first step); `before` is the `after` of the previous call (or the initial state). `changed`,
+  // when given, lists (ascending) every body whose state differs between the two. Fills
   // step_displacement() and step_penetration() (per body, this step) when `per_body` is true, and
   // last_deepest() when `depth` is true or penetration is selected.
   //
@@ -84,7 +85,7 @@ class MetricsRecorder {
   // states, and one that moved some bodies a pass more over the pairs listed for them by a
   // PairCache (metrics_observe.cpp). The figures are those of a full scan.
   void observe(const BodyState& before, const BodyState& after, int step, bool per_body,
-               bool depth = false);
+               bool depth = false, const std::vector<std::uint32_t>* changed = nullptr);
   // Every step from now on scans every body: the check the shortcuts are tested against.
   void scan_every_body() { every_body_ = true; }
   // The metrics of the run that ended in `last`.
@@ -106,8 +107,18 @@ class MetricsRecorder {
     double depth, tolerance;
   };
   // Lists in moved_ the bodies the step from `before` to `after` moved (or left with a velocity);
-  // false, with the list unfinished, when more than a quarter did (a full scan is cheaper then).
+  // false, with the list unfinished, when more than half did (a full pass is cheaper then).
   bool find_moved(const BodyState& before, const BodyState& after);
+  // The same from `changed` and the bodies the last step left with a velocity (still_).
+  bool find_moved(const BodyState& before, const BodyState& after,
+                  const std::vector<std::uint32_t>& changed);
+  // Whether body i moved in the step, or was left with a velocity (a NaN counts as a move).
+  bool moved(std::size_t i, const BodyState& before, const BodyState& after) const {
+    return (after.position[i].x != before.position[i].x) |
+           (after.position[i].y != before.position[i].y) |
+           (scan_.rotated() && after.angle[i] != before.angle[i]) | (after.velocity[i].x != 0.0) |
+           (after.velocity[i].y != 0.0);
+  }
   void observe_all(const BodyState& before, const BodyState& after, int step, bool displacement,
                    bool overlaps);
   void observe_some(const BodyState& before, const BodyState& after, int step, bool displacement,
@@ -136,6 +147,9 @@ class MetricsRecorder {
   // moved, the only ones whose bucket a step changes.
   std::vector<std::size_t> recovering_, merged_;
   std::vector<std::uint32_t> moved_;  // ascending
+  // The bodies with a velocity after the last step observed, ascending: with the bodies whose
+  // state changed, the only ones a step can find moved.
+  std::vector<std::uint32_t> still_, candidates_;
   std::vector<std::uint8_t> active_;  // per body: in moved_ (set while a step is observed)
   // The pairs overlapping after the last step measured, and those of this step.
   std::vector<Overlap> overlaps_, fresh_;

@@ -6,8 +6,8 @@
 // tolerances change) cannot become the worst overlap, which it already was or was not. So a step
 // re-judges only the pairs with a moved body, which a PairCache lists from each moved body's
 // candidates. The pairs that overlapped are kept from step to step, so that the step's deepest
-// overlap and each body's deepest are taken over all of them. When more than a quarter of the
-// bodies moved, judging every pair the cache lists is cheaper, and is done instead.
+// overlap and each body's deepest are taken over all of them. When more than half of the bodies
+// moved, judging every pair the cache lists is cheaper, and is done instead.
 //
 // Where several pairs tie (the same depth, or the same ratio to their tolerance in one step) the
 // lowest pair is named, so that the figures do not depend on the order pairs are met in.
@@ -17,6 +17,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 
 namespace chainbench {
 namespace {
@@ -44,50 +45,74 @@ double float_resolution(Vec2d p) {
 }  // namespace
 
 void MetricsRecorder::observe(const BodyState& before, const BodyState& after, int step,
-                              bool per_body, bool depth) {
+                              bool per_body, bool depth,
+                              const std::vector<std::uint32_t>* changed) {
   const bool displacement = sel_.displacement || per_body;
   const bool overlaps = sel_.penetration || per_body || depth || sel_.stability;
   // Reusing the last step's overlaps needs them measured on the state `before` holds, and a
   // tolerance that stays what it was: not the run's last step, where it drops to the scene's own.
   const bool follows = step == last_step_ + 1 && (!overlaps || overlaps_step_ == last_step_);
-  if (!every_body_ && follows && step < scene_.steps && find_moved(before, after)) {
+  const bool few = !every_body_ && follows && step < scene_.steps &&
+                   (changed ? find_moved(before, after, *changed) : find_moved(before, after));
+  if (few) {
     if (moved_.empty()) {
       observe_still(after, step, displacement, overlaps);
     } else {
       observe_some(before, after, step, displacement, overlaps);
     }
+    std::size_t kept = 0;
+    for (const std::uint32_t i : moved_) {
+      if (after.velocity[i].x != 0.0 || after.velocity[i].y != 0.0) moved_[kept++] = i;
+    }
+    moved_.resize(kept);
+    still_.swap(moved_);
   } else {
     observe_all(before, after, step, displacement, overlaps);
+    still_.clear();
+    for (std::size_t i = 0; i < after.velocity.size(); ++i) {
+      if (after.velocity[i].x != 0.0 || after.velocity[i].y != 0.0)
+        still_.push_back(static_cast<std::uint32_t>(i));
+    }
   }
   last_step_ = step;
   if (overlaps) overlaps_step_ = step;
 }
 
 bool MetricsRecorder::find_moved(const BodyState& before, const BodyState& after) {
-  const std::size_t n = after.position.size(), most = n / 4;
+  const std::size_t n = after.position.size(), most = n / 2;
   moved_.clear();
   // Whole blocks are compared first (values, so that a NaN always counts as a move); only a block
   // with a move in it is walked body by body.
   constexpr std::size_t kBlock = 256;
   // Angles count only where the scene turns its boxes: elsewhere no figure reads them.
-  const bool turning = scan_.rotated();
-  auto moved = [&](std::size_t i) {
-    return (after.position[i].x != before.position[i].x) |
-           (after.position[i].y != before.position[i].y) |
-           (turning && after.angle[i] != before.angle[i]) | (after.velocity[i].x != 0.0) |
-           (after.velocity[i].y != 0.0);
-  };
   for (std::size_t start = 0; start < n; start += kBlock) {
     const std::size_t end = std::min(n, start + kBlock);
     bool any = false;
     for (std::size_t i = start; i < end; ++i)
-      any |= moved(i);
+      any |= moved(i, before, after);
     if (!any) continue;
     for (std::size_t i = start; i < end; ++i) {
-      if (!moved(i)) continue;
+      if (!moved(i, before, after)) continue;
       if (moved_.size() >= most) return false;
       moved_.push_back(static_cast<std::uint32_t>(i));
     }
+  }
+  return true;
+}
+
+bool MetricsRecorder::find_moved(const BodyState& before, const BodyState& after,
+                                 const std::vector<std::uint32_t>& changed) {
+  // A body whose state did not change moved only if it has a velocity, which it then had after
+  // the last step too.
+  candidates_.clear();
+  std::set_union(changed.begin(), changed.end(), still_.begin(), still_.end(),
+                 std::back_inserter(candidates_));
+  const std::size_t most = after.position.size() / 2;
+  moved_.clear();
+  for (const std::uint32_t i : candidates_) {
+    if (!moved(i, before, after)) continue;
+    if (moved_.size() >= most) return false;
+    moved_.push_back(i);
   }
   return true;
 }

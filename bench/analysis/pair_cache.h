@@ -1,16 +1,18 @@
-// The pairs of bodies whose swept boxes touch, for the steps in which most bodies move, found
+// The pairs of bodies whose swept boxes touch, for the steps in which many bodies move, found
 // without building a grid every step.
 //
 // Each body is filed with a fat box: its swept box grown by a margin, and by twice the distance
 // it moved in that step along each axis, so that a body keeping its pace stays inside it for a few
 // steps. The pairs whose fat boxes touch are listed once. While every body's swept box stays
 // inside its fat box, every pair whose swept boxes touch is on that list, so a step tests the
-// listed pairs only. A step in which some body leaves its fat box, or its position turns finite or
-// not, files every body again.
+// listed pairs only. A body that leaves its fat box (or whose position turns finite or not) is
+// given a new one and becomes loose: its pairs are found again, against the fat boxes in the grid
+// of the last filing and those of the other loose bodies, and kept on a list of their own. When
+// more than a sixty-fourth of the bodies are loose, every body is filed again.
 //
 // Where only some bodies moved, the pairs with a moved body are read from each moved body's own
-// list, and only the moved bodies are swept: a body at rest is still inside its fat box, since it
-// was when it last moved.
+// list, and only the moved bodies are measured: a body at rest is still inside its fat box, since
+// it was when it last moved.
 #pragma once
 
 #include "cell_table.h"
@@ -41,16 +43,17 @@ class PairCache {
   void for_each_pair_of(const BodyState& before, const BodyState& after,
                         std::span<const std::uint32_t> moved, std::span<const std::uint8_t> active,
                         Fn&& fn);
-  // Forget the filing: the bodies moved without being swept here.
+  // Forget the filing: the bodies moved without being measured here.
   void invalidate() { filed_ = false; }
 
-  // How many times the bodies were filed (the first time included).
+  // How many times every body was filed (the first time included), and how many times a single
+  // body was given a new fat box.
   std::uint64_t filings() const { return filings_; }
-  // Pairs on the list now: pairs whose fat boxes touch.
-  std::size_t listed() const { return pairs_.size(); }
+  std::uint64_t refits() const { return refits_; }
 
  private:
   using Box = CellTable::Box;
+  using Pair = std::pair<std::uint32_t, std::uint32_t>;
   // Body i's box over the step into box_ (swept; at rest where it is after the step when it came
   // from a non-finite position), and whether it fits the fat box it was filed with.
   bool measure(std::size_t i, const BodyState& before, const BodyState& after) {
@@ -63,50 +66,76 @@ class PairCache {
     return placed_[i] == filed_placed_[i] &&
            (!placed_[i] || (f.x0 <= s.x0 && f.y0 <= s.y0 && s.x1 <= f.x1 && s.y1 <= f.y1));
   }
-  // measure() on every body; true when every one fits.
-  bool sweep(const BodyState& before, const BodyState& after);
+  // Body i's fat box, from its box measured over the step.
+  Box fatten(std::size_t i, const BodyState& before, const BodyState& after) const;
+  // measure() on `bodies` (every body when empty), refitting those that left their fat box; false
+  // when so many have that every body must be filed again.
+  bool measure_all(std::span<const std::uint32_t> bodies, const BodyState& before,
+                   const BodyState& after);
+  // Gives the bodies of refit_ new fat boxes and finds their pairs again.
+  void refit(const BodyState& before, const BodyState& after);
   void file(const BodyState& before, const BodyState& after);
+  void add(std::uint32_t i, std::uint32_t j) {
+    if (scan_.dynamic(i) || scan_.dynamic(j))
+      loose_pairs_.emplace_back(std::min(i, j), std::max(i, j));
+  }
 
-  PairScan scan_;  // of the fat boxes
+  PairScan scan_;  // of the fat boxes, as last filed
   std::vector<Box> box_, fat_;
   // Per body: both positions of the step finite (its pairs are reported), its position after the
   // step finite (it is filed), and that as it was when filed.
   std::vector<std::uint8_t> live_, placed_, filed_placed_;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs_;
-  // Per body, its partners on the list: adj_[adj_start_[i] .. adj_start_[i + 1]).
+  std::vector<Pair> pairs_;  // whose fat boxes touched when filed
+  // Per body, its partners on that list: adj_[adj_start_[i] .. adj_start_[i + 1]).
   std::vector<std::uint32_t> adj_start_, adj_;
+  // Bodies given a new fat box since the filing, and the pairs with one of them whose fat boxes
+  // touch: pairs_ and adj_ hold stale pairs of theirs, which are skipped.
+  std::vector<std::uint8_t> loose_;
+  std::vector<std::uint32_t> loose_list_;
+  std::vector<std::uint8_t> refitting_;  // per body: in refit_
+  std::vector<std::uint32_t> refit_;     // bodies that left their fat box in this step
+  std::vector<Pair> loose_pairs_;
   bool filed_ = false;
-  std::uint64_t filings_ = 0;
+  std::uint64_t filings_ = 0, refits_ = 0;
 };
 
 template <class Fn>
 void PairCache::for_each_pair(const BodyState& before, const BodyState& after, Fn&& fn) {
-  if (!sweep(before, after)) file(before, after);
-  for (const auto& [i, j] : pairs_) {
-    if (live_[i] && live_[j] && CellTable::touch(box_[i], box_[j]))
-      fn(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
+  if (!measure_all({}, before, after)) file(before, after);
+  auto report = [&](const Pair& p) {
+    if (live_[p.first] && live_[p.second] && CellTable::touch(box_[p.first], box_[p.second]))
+      fn(static_cast<std::size_t>(p.first), static_cast<std::size_t>(p.second));
+  };
+  for (const Pair& p : pairs_) {
+    if (!loose_[p.first] && !loose_[p.second]) report(p);
   }
+  for (const Pair& p : loose_pairs_)
+    report(p);
 }
 
 template <class Fn>
 void PairCache::for_each_pair_of(const BodyState& before, const BodyState& after,
                                  std::span<const std::uint32_t> moved,
                                  std::span<const std::uint8_t> active, Fn&& fn) {
-  bool all_fit = filed_;
-  for (const std::uint32_t m : moved)
-    all_fit &= measure(m, before, after);
-  if (!all_fit) {
-    sweep(before, after);
+  if (!measure_all(moved, before, after)) {
+    measure_all({}, before, after);
     file(before, after);
   }
+  // A body at rest is read where it stands, and counts if its position is finite.
+  auto box = [&](std::uint32_t i) { return active[i] ? box_[i] : scan_.at_rest(i, after); };
+  auto counts = [&](std::uint32_t i) { return active[i] ? live_[i] != 0 : placed_[i] != 0; };
   for (const std::uint32_t m : moved) {
-    if (!live_[m]) continue;
+    if (!live_[m] || loose_[m]) continue;
     for (std::uint32_t k = adj_start_[m]; k < adj_start_[m + 1]; ++k) {
       const std::uint32_t j = adj_[k];
-      if (active[j] ? j < m || !live_[j] : !placed_[j]) continue;  // met from j, or not finite
-      if (CellTable::touch(box_[m], active[j] ? box_[j] : scan_.at_rest(j, after)))
+      if (loose_[j] || (active[j] && j < m) || !counts(j)) continue;  // elsewhere, or met from j
+      if (CellTable::touch(box_[m], box(j)))
         fn(static_cast<std::size_t>(std::min(m, j)), static_cast<std::size_t>(std::max(m, j)));
     }
+  }
+  for (const auto& [i, j] : loose_pairs_) {
+    if ((active[i] || active[j]) && counts(i) && counts(j) && CellTable::touch(box(i), box(j)))
+      fn(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
   }
 }
 

@@ -38,6 +38,10 @@ class PairScan {
   template <class Fn>
   void for_each_pair(Fn&& fn) const;
 
+  // fn(j) once for every body j held whose box overlaps or touches `q`; call after build().
+  template <class Fn>
+  void for_each_held(const Box& q, Fn&& fn) const;
+
   // Overlap of i and j in state s along the axis of least penetration (m), 0 when apart. With
   // rotation, the boxes' separating axes are used.
   double depth(const BodyState& s, std::size_t i, std::size_t j) const;
@@ -89,6 +93,21 @@ void PairScan::for_each_pair(Fn&& fn) const {
     for (std::uint32_t j = 0; j < swept_.size(); ++j)
       against(g, j);
   }
+}
+
+template <class Fn>
+void PairScan::for_each_held(const Box& q, Fn&& fn) const {
+  for (const std::uint32_t g : giants_) {
+    if (touch(q, swept_[g])) fn(g);
+  }
+  const CellTable::Cells c = table_.cover(q);
+  if (c.count() > CellTable::kMaxCells) {  // a giant query: against every box held
+    for (std::uint32_t j = 0; j < swept_.size(); ++j) {
+      if (live_[j] && !giant_[j] && touch(q, swept_[j])) fn(j);
+    }
+    return;
+  }
+  table_.for_each_in_cells(q, c, fn);
 }
 
 }  // namespace chainbench

@@ -1,5 +1,7 @@
 #include "runner.h"
 
+#include "state_feed.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -63,18 +65,18 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
   ExpectationCheck expect(scene);
   std::optional<MetricsRecorder> recorder;
   if (every_step) recorder.emplace(scene, options.metrics);
-  BodyState before(n), after(n);
-  int before_state = -1;  // the state `before` holds, -1: none
+  StateFeed feed(*engine, n);
+  int before_state = -1;  // the state last read (feed.before() after the next read), -1: none
   auto check = [&](int k, const BodyState& state, const PairOverlap* deepest) {
-    const BodyState* previous = before_state == k - 1 ? &before : nullptr;
+    const BodyState* previous = before_state == k - 1 ? &feed.before() : nullptr;
     expect.observe(k, state, previous, deepest);
   };
   if (every_step || expect.needs_state(0)) {
-    engine->read_state(before);
+    feed.read();
     before_state = 0;
     if (!expect.empty() && expect.needs_state(0)) {
-      const PairOverlap deepest = MetricsRecorder::deepest_overlap(scene, before, 0);
-      expect.observe(0, before, nullptr, expect.needs_depth(0) ? &deepest : nullptr);
+      const PairOverlap deepest = MetricsRecorder::deepest_overlap(scene, feed.after(), 0);
+      expect.observe(0, feed.after(), nullptr, expect.needs_depth(0) ? &deepest : nullptr);
     }
   }
   const std::span<const CounterDef> engine_counters = engine->counter_defs();
@@ -109,10 +111,11 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     }
     const int k = step + 1;  // the state after this step
     if (every_step || expect.needs_state(k)) {
-      engine->read_state(after);
+      feed.read();
+      const BodyState& after = feed.after();
       const bool depth = expect.needs_depth(k);
       if (recorder) {
-        recorder->observe(before, after, k, observed, depth);
+        recorder->observe(feed.before(), after, k, observed, depth, feed.changed());
         if (observed) {
           StepView view;
           view.step = k;
@@ -132,7 +135,6 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
             depth ? MetricsRecorder::deepest_overlap(scene, after, k) : PairOverlap{};
         check(k, after, depth ? &deepest : nullptr);
       }
-      std::swap(before, after);
       before_state = k;
     }
     if (options.progress && k % report_every == 0) options.progress(k, scene.steps);

@@ -13,6 +13,7 @@
 #include "metrics.h"
 #include "registry.h"
 #include "scene_library.h"
+#include "state_feed.h"
 
 #include <benchmark/benchmark.h>
 #include <malloc.h>
@@ -112,23 +113,21 @@ void harness_benchmark(benchmark::State& state, const Family& family, int size,
   const bool metrics = state.range(0) != 0;
   std::optional<MetricsRecorder> recorder;
   if (metrics) recorder.emplace(scene, MetricSelection{});
-  BodyState before(scene.bodies.size()), after(scene.bodies.size());
+  StateFeed feed(*engine, scene.bodies.size());
   int step = 0;
-  if (metrics) engine->read_state(before);  // bare, it steps exactly as step_benchmark does
+  if (metrics) feed.read();  // bare, it steps exactly as step_benchmark does
   for (; step < family.warmup; ++step) {
     engine->step(step);
     if (metrics) {  // the recorder follows the run from its start, as in `run`
-      engine->read_state(after);
-      recorder->observe(before, after, step + 1, false);
-      std::swap(before, after);
+      feed.read();
+      recorder->observe(feed.before(), feed.after(), step + 1, false, false, feed.changed());
     }
   }
   for (auto _ : state) {
     engine->step(step++);
     if (metrics) {
-      engine->read_state(after);
-      recorder->observe(before, after, step, false);
-      std::swap(before, after);
+      feed.read();
+      recorder->observe(feed.before(), feed.after(), step, false, false, feed.changed());
     }
   }
   const auto bodies = static_cast<double>(scene.bodies.size());

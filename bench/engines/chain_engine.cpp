@@ -4,10 +4,20 @@
 
 #include <chain/world.h>
 
+#include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 
 namespace chainbench {
 namespace {
+
+// The same bits, and not NaN: a NaN reads as changed every time, as it compares to the harness.
+bool same(chain::Vec2 a, chain::Vec2 b) {
+  return std::bit_cast<std::uint64_t>(a.x) == std::bit_cast<std::uint64_t>(b.x) &&
+         std::bit_cast<std::uint64_t>(a.y) == std::bit_cast<std::uint64_t>(b.y) && a.x == a.x &&
+         a.y == a.y;
+}
 
 chain::BodyType to_chain(BodyKind kind) {
   switch (kind) {
@@ -67,6 +77,10 @@ class ChainEngine final : public Engine {
       index_of_[ids_.back().value] = static_cast<std::uint32_t>(ids_.size() - 1);
     }
     stored_ids_.resize(ids_.size());
+    last_ids_.resize(ids_.size());
+    last_positions_.resize(ids_.size());
+    last_velocities_.resize(ids_.size());
+    flag_.assign(ids_.size(), 0);
     positions_.resize(ids_.size());
     velocities_.resize(ids_.size());
   }
@@ -97,6 +111,42 @@ class ChainEngine final : public Engine {
     }
   }
 
+  // The same pass, compared with the one before, kept in storage order; a body the world stored
+  // elsewhere since (it renumbers its bodies now and then) is compared with `state` instead. Only
+  // the bodies whose state differs are written and listed.
+  bool read_changes(BodyState& state, std::vector<std::uint32_t>& changed) const override {
+    last_ids_.swap(stored_ids_);
+    last_positions_.swap(positions_);
+    last_velocities_.swap(velocities_);
+    world_.read_all(stored_ids_, positions_, velocities_);
+    changed.clear();
+    for (std::size_t k = 0; k < stored_ids_.size(); ++k) {
+      const chain::Vec2 p = positions_[k], v = velocities_[k];
+      const std::uint32_t i = index_of_[stored_ids_[k].value];
+      if (stored_ids_[k] == last_ids_[k]) {
+        if (same(p, last_positions_[k]) && same(v, last_velocities_[k])) continue;
+      } else if (same(p, {state.position[i].x, state.position[i].y}) &&
+                 same(v, {state.velocity[i].x, state.velocity[i].y})) {
+        continue;
+      }
+      state.position[i] = {p.x, p.y};
+      state.velocity[i] = {v.x, v.y};
+      changed.push_back(i);
+    }
+    // In scene order: sorted where few changed, from a pass over flags where many did.
+    if (changed.size() <= stored_ids_.size() / 32) {
+      std::sort(changed.begin(), changed.end());
+      return true;
+    }
+    for (const std::uint32_t i : changed)
+      flag_[i] = 1;
+    changed.clear();
+    for (std::uint32_t i = 0; i < flag_.size(); ++i) {
+      if (flag_[i]) changed.push_back(i), flag_[i] = 0;
+    }
+    return true;
+  }
+
   std::span<const CounterDef> counter_defs() const override { return counter_list(); }
   std::span<const double> counters() const override {
     const chain::StepStats& s = world_.last_step_stats();
@@ -123,8 +173,12 @@ class ChainEngine final : public Engine {
   mutable std::vector<chain::Vec2> positions_, velocities_;
   mutable std::array<double, kCount> counters_{};
   static constexpr std::uint32_t kNoIndex = 0xffffffffu;
-  std::vector<std::uint32_t> index_of_;            // body id value -> scene index
-  mutable std::vector<chain::BodyId> stored_ids_;  // read_all's ids, in the world's order
+  std::vector<std::uint32_t> index_of_;  // body id value -> scene index
+  // The last read (read_all's ids, positions and velocities, in the world's order) and the one
+  // before it.
+  mutable std::vector<chain::BodyId> stored_ids_, last_ids_;
+  mutable std::vector<chain::Vec2> last_positions_, last_velocities_;
+  mutable std::vector<std::uint8_t> flag_;  // per scene index, zero between reads
   mutable std::vector<EngineEvent> events_;
 };
 

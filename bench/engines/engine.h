@@ -50,6 +50,14 @@ class Engine {
   // scene step.
   virtual void step(int step_index) = 0;
   virtual void read_state(BodyState& out) const = 0;
+  // Where the engine can tell what changed: brings `state`, which holds what this engine's last
+  // read_state() or read_changes() wrote, up to its state now, lists in `changed` (ascending)
+  // every body whose position, velocity or angle differs, and returns true. The default returns
+  // false and writes nothing: the caller then reads the whole state.
+  virtual bool read_changes(BodyState& state, std::vector<std::uint32_t>& changed) const {
+    (void)state, (void)changed;
+    return false;
+  }
   // What the engine counts about each step, and the last step's values in that order.
   virtual std::span<const CounterDef> counter_defs() const { return {}; }
   virtual std::span<const double> counters() const { return {}; }

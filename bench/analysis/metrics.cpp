@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cfloat>
 #include <cmath>
 #include <cstdio>
 
@@ -39,14 +38,6 @@ double MetricsRecorder::initial_depth(std::size_t i, std::size_t j) const {
   const std::pair<std::uint64_t, double> key{pair_key(i, j), -HUGE_VAL};
   const auto it = std::lower_bound(initial.begin(), initial.end(), key);
   return it != initial.end() && it->first == key.first ? it->second : 0.0;
-}
-
-bool below_resolution(double value, double magnitude) {
-  const double m = std::abs(magnitude);
-  if (!std::isfinite(value) || !std::isfinite(m)) return false;
-  // One unit in the last place of m (for m = 0, of the smallest normal double).
-  const double ulp = m > 0.0 ? std::nextafter(m, HUGE_VAL) - m : DBL_MIN;
-  return std::abs(value) <= 2.0 * ulp;
 }
 
 BodyState initial_state(const Scene& scene) {

@@ -10,8 +10,10 @@
 #include "tunnelling.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -176,7 +178,16 @@ class MetricsRecorder {
 
 // Whether a difference of `value` between quantities of magnitude `magnitude` is rounding: at or
 // below two units in the last place of that magnitude. Such figures are reported as 0.
-bool below_resolution(double value, double magnitude);
+// Inline: the metrics ask it of every body and pair they judge.
+inline bool below_resolution(double value, double magnitude) {
+  const double m = std::abs(magnitude);
+  if (!std::isfinite(value) || !std::isfinite(m)) return false;
+  // One unit in the last place of m (for m = 0, of the smallest normal double): the next double
+  // up from a finite m >= 0 is the one whose bits are one more, as std::nextafter finds it.
+  const double ulp = m > 0.0 ? std::bit_cast<double>(std::bit_cast<std::uint64_t>(m) + 1u) - m
+                             : std::numeric_limits<double>::min();
+  return std::abs(value) <= 2.0 * ulp;
+}
 // The larger absolute coordinate of p: the magnitude a position's rounding is judged against.
 inline double magnitude(Vec2d p) {
   return std::max(std::abs(p.x), std::abs(p.y));

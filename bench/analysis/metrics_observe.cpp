@@ -28,6 +28,7 @@ double energy_free_displacement(const BodyState& before, const BodyState& after,
                                 double dt) {
   const double dx = after.position[i].x - before.position[i].x - dt * after.velocity[i].x;
   const double dy = after.position[i].y - before.position[i].y - dt * after.velocity[i].y;
+  if (dx == 0.0 && dy == 0.0) return 0.0;
   const double d = std::sqrt(dx * dx + dy * dy);  // positions stay far below overflow
   return below_resolution(d, magnitude(after.position[i])) ? 0.0 : d;
 }
@@ -296,7 +297,7 @@ void MetricsRecorder::update_slack(const BodyState& before, const BodyState& aft
     finite_ = false;
     return;
   }
-  const double moved = std::hypot(p.x - q.x, p.y - q.y);
+  const double moved = p.x == q.x && p.y == q.y ? 0.0 : std::hypot(p.x - q.x, p.y - q.y);
   const double speed = moved / dt_;
   if (speed > peak_speed_) peak_speed_ = speed, peak_body_ = i, peak_step_ = step;
   // A leaky bucket: a step slower than the bound gives back what faster ones took, up to

@@ -77,9 +77,6 @@ class ChainEngine final : public Engine {
       index_of_[ids_.back().value] = static_cast<std::uint32_t>(ids_.size() - 1);
     }
     stored_ids_.resize(ids_.size());
-    last_ids_.resize(ids_.size());
-    last_positions_.resize(ids_.size());
-    last_velocities_.resize(ids_.size());
     flag_.assign(ids_.size(), 0);
     positions_.resize(ids_.size());
     velocities_.resize(ids_.size());
@@ -111,24 +108,19 @@ class ChainEngine final : public Engine {
     }
   }
 
-  // The same pass, compared with the one before, kept in storage order; a body the world stored
-  // elsewhere since (it renumbers its bodies now and then) is compared with `state` instead. Only
-  // the bodies whose state differs are written and listed.
+  // The world brings the copy of the last read, kept in storage order, up to date in one pass
+  // and lists what it changed; a body the world stored elsewhere since (it renumbers its bodies
+  // now and then) is compared with `state` instead. Only the bodies whose state differs are
+  // written and listed.
   bool read_changes(BodyState& state, std::vector<std::uint32_t>& changed) const override {
-    last_ids_.swap(stored_ids_);
-    last_positions_.swap(positions_);
-    last_velocities_.swap(velocities_);
-    world_.read_all(stored_ids_, positions_, velocities_);
+    world_.update_all(stored_ids_, positions_, velocities_, slots_);
     changed.clear();
-    for (std::size_t k = 0; k < stored_ids_.size(); ++k) {
+    for (const std::uint32_t k : slots_) {
       const chain::Vec2 p = positions_[k], v = velocities_[k];
       const std::uint32_t i = index_of_[stored_ids_[k].value];
-      if (stored_ids_[k] == last_ids_[k]) {
-        if (same(p, last_positions_[k]) && same(v, last_velocities_[k])) continue;
-      } else if (same(p, {state.position[i].x, state.position[i].y}) &&
-                 same(v, {state.velocity[i].x, state.velocity[i].y})) {
-        continue;
-      }
+      if (same(p, {state.position[i].x, state.position[i].y}) &&
+          same(v, {state.velocity[i].x, state.velocity[i].y}))
+        continue;  // moved here from another slot, unchanged
       state.position[i] = {p.x, p.y};
       state.velocity[i] = {v.x, v.y};
       changed.push_back(i);
@@ -174,10 +166,10 @@ class ChainEngine final : public Engine {
   mutable std::array<double, kCount> counters_{};
   static constexpr std::uint32_t kNoIndex = 0xffffffffu;
   std::vector<std::uint32_t> index_of_;  // body id value -> scene index
-  // The last read (read_all's ids, positions and velocities, in the world's order) and the one
-  // before it.
-  mutable std::vector<chain::BodyId> stored_ids_, last_ids_;
-  mutable std::vector<chain::Vec2> last_positions_, last_velocities_;
+  // The last read: read_all's ids, positions and velocities, in the world's order, and the slots
+  // update_all changed.
+  mutable std::vector<chain::BodyId> stored_ids_;
+  mutable std::vector<std::uint32_t> slots_;
   mutable std::vector<std::uint8_t> flag_;  // per scene index, zero between reads
   mutable std::vector<EngineEvent> events_;
 };

@@ -13,6 +13,7 @@
 #include "worker_pool.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <span>
 #include <stdexcept>
@@ -205,6 +206,29 @@ void World::read_all(Span<BodyId> ids, Span<Vec2> positions, Span<Vec2> velociti
   if (!velocities.empty()) {
     for (std::size_t s = 0; s < n; ++s)
       velocities[s] = {b.vx[s], b.vy[s]};
+  }
+}
+
+void World::update_all(Span<BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities,
+                       std::vector<std::uint32_t>& changed) const {
+  const detail::Bodies& b = impl_->bodies;
+  const std::size_t n = b.size();
+  if (ids.size() < n || positions.size() < n || velocities.size() < n) {
+    throw std::invalid_argument("update_all: an output span is shorter than body_count()");
+  }
+  changed.clear();
+  auto same = [](double a, double c) {
+    return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(c) && a == a;
+  };
+  for (std::size_t s = 0; s < n; ++s) {
+    const Vec2 p{b.box[s].center[0], b.box[s].center[1]}, v{b.vx[s], b.vy[s]};
+    if (ids[s].value == b.id[s] && same(p.x, positions[s].x) && same(p.y, positions[s].y) &&
+        same(v.x, velocities[s].x) && same(v.y, velocities[s].y))
+      continue;
+    ids[s] = BodyId{b.id[s]};
+    positions[s] = p;
+    velocities[s] = v;
+    changed.push_back(static_cast<std::uint32_t>(s));
   }
 }
 

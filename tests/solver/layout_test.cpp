@@ -37,6 +37,11 @@ std::vector<BodyDef> columns(double gap) {
   return defs;
 }
 
+bool bits_equal(Vec2 a, Vec2 b) {
+  return std::bit_cast<std::uint64_t>(a.x) == std::bit_cast<std::uint64_t>(b.x) &&
+         std::bit_cast<std::uint64_t>(a.y) == std::bit_cast<std::uint64_t>(b.y);
+}
+
 std::vector<BodyId> create_all(World& w, const std::vector<BodyDef>& defs) {
   std::vector<BodyId> ids;
   for (const BodyDef& d : defs)
@@ -148,7 +153,7 @@ TEST(Layout, BodiesMovedByARenumberingKeepTheirState) {
 }
 
 // read_all walks the storage order a renumbering set: every body is listed once, with the state
-// position() and velocity() give for its id.
+// position() and velocity() give for its id; update_all keeps such a copy up to date.
 TEST(Layout, ReadAllListsEveryBodyOnceWithItsState) {
   World w(world_def(Variant::kModern, VelocityRule::kInelastic));
   const std::vector<BodyId> ids = create_all(w, columns(0.05));
@@ -182,6 +187,34 @@ TEST(Layout, ReadAllListsEveryBodyOnceWithItsState) {
   std::vector<Vec2> short_out(n - 1, Vec2{7.0, 7.0});
   EXPECT_THROW(w.read_all(stored, short_out, {}), std::invalid_argument);
   EXPECT_EQ(short_out[0].x, 7.0);
+
+  // update_all brings the copy to what read_all reads now, and lists exactly the entries it
+  // changed: while a box flies and lands, and once all rest (nothing).
+  std::vector<std::uint32_t> changed;
+  std::size_t changes = 0;
+  w.set_velocity(ids.back(), {0.0, 3.0});  // a top box thrown up, to land again
+  for (int s = 0; s < 200; ++s) {
+    w.step(kDt);
+    std::vector<BodyId> fresh_ids(n);
+    std::vector<Vec2> fresh_p(n), fresh_v(n);
+    w.read_all(fresh_ids, fresh_p, fresh_v);
+    std::vector<std::uint32_t> want;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      if (fresh_ids[k] != stored[k] || !bits_equal(fresh_p[k], p[k]) ||
+          !bits_equal(fresh_v[k], v[k]))
+        want.push_back(k);
+    }
+    w.update_all(stored, p, v, changed);
+    ASSERT_EQ(changed, want) << "step " << s;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      ASSERT_EQ(stored[k], fresh_ids[k]);
+      ASSERT_TRUE(bits_equal(p[k], fresh_p[k]) && bits_equal(v[k], fresh_v[k]));
+    }
+    changes += changed.size();
+  }
+  EXPECT_GT(changes, 0u);
+  EXPECT_TRUE(changed.empty()) << "the pile should rest again after 200 steps";
+  EXPECT_THROW(w.update_all(stored, short_out, v, changed), std::invalid_argument);
 }
 
 // A game that adds a body every step makes the solver sort its bodies again every step; it is

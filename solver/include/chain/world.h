@@ -51,6 +51,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace chain {
 
@@ -177,6 +178,12 @@ class World {
   // Throws std::invalid_argument for a non-empty output shorter than body_count(), before
   // writing anything.
   void read_all(Span<BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities) const;
+  // Brings a full copy that read_all() made up to date with the world now, in one pass through
+  // memory: every entry k whose id, centre or velocity differs (in bits, and a NaN always does)
+  // is overwritten, and k appended to `changed` (cleared first), in ascending order. Throws
+  // std::invalid_argument for an output shorter than body_count(), before writing anything.
+  void update_all(Span<BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities,
+                  std::vector<std::uint32_t>& changed) const;
 
   // Advances by dt seconds. Throws std::invalid_argument unless dt is finite and > 0; any dt is
   // valid, and fast bodies are swept whatever it is (modern).

@@ -1,5 +1,7 @@
 #include "chain_state.h"
 
+#include "box_overlap.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -14,6 +16,8 @@ void ChainState::begin_step(StepContext& ctx) {
     forget_slots();
     near_start_.reserve(n + 2);
     near_.reserve(8 * n);
+    lower_start_.reserve(n + 1);
+    lower_.reserve(4 * n);
     ctx.crushes.reserve(std::min<std::size_t>(n, 1024));
   }
   // Each holds a body at most once; checked every step, as a copied world's vectors come without
@@ -57,6 +61,17 @@ void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near
     near_[near_start_[p.a + 1]++] = p.b;
     near_[near_start_[p.b + 1]++] = p.a;
   }
+  // Each body's lower neighbours, in the order of its near list.
+  lower_start_.resize(n + 1);
+  lower_.resize(near_.size() / 2);
+  std::uint32_t fill = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    lower_start_[i] = fill;
+    for (std::uint32_t k = near_start_[i]; k < near_start_[i + 1]; ++k) {
+      if (near_[k] < i) lower_[fill++] = near_[k];
+    }
+  }
+  lower_start_[n] = fill;
 }
 
 void ChainState::clear_suspects() {
@@ -86,16 +101,8 @@ void ChainState::gather_overlaps(StepContext& ctx, std::uint32_t around,
   // Every body that moved less than the broadphase's refile distance since the near pairs were
   // taken closed by less than the slack with any other such body: every one of them that overlaps
   // `around` now is among its near pairs.
-  const double tol = ctx.def.touch_tolerance;
-  const Bodies& b = ctx.bodies;
-  const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
-  for (std::uint32_t k = near_start_[around]; k < near_start_[around + 1]; ++k) {
-    const std::uint32_t j = near_[k];
-    if ((hx + b.hx(j)) - std::abs(x - b.x(j)) > tol &&
-        (hy + b.hy(j)) - std::abs(y - b.y(j)) > tol) {
-      out.push_back(j);
-    }
-  }
+  for_each_hit(ctx.bodies.box.data(), around, near(around), ctx.def.touch_tolerance,
+               [&](std::uint32_t j) { out.push_back(j); });
 }
 
 // Kept out of gather_overlaps: the near-pair loop above runs for every body a chain reaches, and

@@ -71,6 +71,13 @@ class ChainState {
   std::span<const std::uint32_t> near(std::uint32_t body) const {
     return {near_.data() + near_start_[body], near_.data() + near_start_[body + 1]};
   }
+  // The same, less the bodies of higher slots: a pair is taken at its later body (gather_contacts)
+  // without reading the other half of the list. Where lower(body) starts among them all, in slot
+  // order.
+  std::span<const std::uint32_t> lower(std::uint32_t body) const {
+    return {lower_.data() + lower_start_[body], lower_.data() + lower_start_[body + 1]};
+  }
+  std::uint32_t lower_offset(std::uint32_t body) const { return lower_start_[body]; }
 
   bool visited(std::uint32_t body) const { return marks_[body].visited == stamp_; }
   void visit(std::uint32_t body) {
@@ -169,7 +176,8 @@ class ChainState {
     reach_order_.push_back(body);
   }
 
-  std::vector<std::uint32_t> near_start_, near_;  // near pairs as adjacency lists
+  std::vector<std::uint32_t> near_start_, near_;    // near pairs as adjacency lists
+  std::vector<std::uint32_t> lower_start_, lower_;  // their entries of lower slots
   std::vector<Marks> marks_;
   std::uint32_t stamp_ = 0;
   std::uint32_t step_ = 0;

@@ -35,7 +35,14 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
     ctx.stats.max_depth = std::max(ctx.stats.max_depth, item.depth);
     cands_.clear();
     state.gather_overlaps(ctx, w, cands_);
-    crush_check(ctx, state, item);
+    // Only an immovable body other than its wall can squeeze w: most walls meet none, and skip
+    // the call.
+    for (const std::uint32_t d : cands_) {
+      if (d != item.wall && ctx.bodies.immovable(d)) {
+        crush_check(ctx, state, item);
+        break;
+      }
+    }
     for (std::size_t i = 0; i < cands_.size(); ++i) {
       const std::uint32_t c = cands_[i];
       if (ctx.bodies.immovable(c) || state.crushed(c)) continue;
@@ -124,7 +131,9 @@ bool ForceStatic::yield(StepContext& ctx, ChainState& state, std::uint32_t w, st
 
 // item.body was pushed against item.wall, away from its backing; an immovable body overlapping
 // it beyond, along the chaining axis, squeezes it: it is centred between the two and reported.
-void ForceStatic::crush_check(StepContext& ctx, ChainState& state, const Item& item) {
+// Kept out of run(): called only for the walls that meet an immovable body besides their own.
+[[gnu::noinline]] void ForceStatic::crush_check(StepContext& ctx, ChainState& state,
+                                                const Item& item) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
   const int axis = item.axis;

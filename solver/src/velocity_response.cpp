@@ -16,9 +16,7 @@ std::uint32_t VelocityResponse::Groups::find(std::uint32_t i) {
 void VelocityResponse::apply(Bodies& bodies, double restitution_threshold, WorkerPool& pool) {
   if (links_.empty()) return;
   // A world at rest pushes along one axis only: the workers would wake for nothing.
-  const bool both =
-      std::any_of(links_.begin(), links_.end(), [](const Link& l) { return l.axis == 0; }) &&
-      std::any_of(links_.begin(), links_.end(), [](const Link& l) { return l.axis == 1; });
+  const bool both = per_axis_[0] > 0 && per_axis_[1] > 0;
   if (pool.threads() == 1 || !both) {
     apply_axis(bodies, 0, restitution_threshold, groups_[0]);
     apply_axis(bodies, 1, restitution_threshold, groups_[0]);
@@ -34,8 +32,7 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
   auto& [parent_, root_, member_, mass_, momentum_, anchor_sum_, restitution_, spread_,
          anchor_count_] = g;
   auto find = [&g](std::uint32_t i) { return g.find(i); };
-  if (std::none_of(links_.begin(), links_.end(), [axis](const Link& l) { return l.axis == axis; }))
-    return;
+  if (per_axis_[axis] == 0) return;
   const std::uint32_t n = bodies.dynamic_end;
   double* v = axis == 0 ? bodies.vx.data() : bodies.vy.data();
   parent_.resize(n);
@@ -90,16 +87,22 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
   }
   // momentum_ becomes the group velocity: the anchors' mean (several only when a body is
   // crushed between them) or the mass-weighted mean.
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (!member_[i] || root_[i] != i) continue;
-    momentum_[i] = anchor_count_[i] > 0 ? anchor_sum_[i] / static_cast<double>(anchor_count_[i])
-                                        : momentum_[i] / mass_[i];
-  }
-  if (max_restitution == 0.0) {  // no group bounces: every member takes its group's velocity
+  auto group_velocity = [&](std::uint32_t r) {
+    momentum_[r] = anchor_count_[r] > 0 ? anchor_sum_[r] / static_cast<double>(anchor_count_[r])
+                                        : momentum_[r] / mass_[r];
+  };
+  if (max_restitution == 0.0) {
+    // No group bounces: every member takes its group's velocity, in the same pass, as a group's
+    // root (its smallest slot) comes before its other members.
     for (std::uint32_t i = 0; i < n; ++i) {
-      if (member_[i]) v[i] = momentum_[root_[i]];
+      if (!member_[i]) continue;
+      if (root_[i] == i) group_velocity(i);
+      v[i] = momentum_[root_[i]];
     }
     return;
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (member_[i] && root_[i] == i) group_velocity(i);
   }
   for (std::uint32_t i = 0; i < n; ++i) {
     if (member_[i])

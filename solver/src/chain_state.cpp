@@ -1,7 +1,5 @@
 #include "chain_state.h"
 
-#include "box_overlap.h"
-
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -92,29 +90,18 @@ void ChainState::begin_chain() {
   cut = false;
 }
 
-void ChainState::gather_overlaps(StepContext& ctx, std::uint32_t around,
-                                 std::vector<std::uint32_t>& out) const {
-  if (!ctx.broadphase.near_pairs_hold()) {
-    gather_overlaps_refiled(ctx, around, out);
-    return;
-  }
-  // Every body that moved less than the broadphase's refile distance since the near pairs were
-  // taken closed by less than the slack with any other such body: every one of them that overlaps
-  // `around` now is among its near pairs.
-  for_each_hit(ctx.bodies.box.data(), around, near(around), ctx.def.touch_tolerance,
-               [&](std::uint32_t j) { out.push_back(j); });
-}
-
 // Kept out of gather_overlaps: the near-pair loop above runs for every body a chain reaches, and
 // the broadphase queries here, inlined into it, slowed it by a tenth.
-[[gnu::noinline]] void ChainState::gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
+[[gnu::noinline]] bool ChainState::gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
                                                            std::vector<std::uint32_t>& out) const {
+  const std::size_t from = out.size();
   const double tol = ctx.def.touch_tolerance;
   const Broadphase& bp = ctx.broadphase;
   const Bodies& b = ctx.bodies;
   if (bp.stale(around)) {  // filed again since the near pairs were taken: they do not hold for it
     bp.for_each_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
-    return;
+    return std::any_of(out.begin() + from, out.end(),
+                       [&](std::uint32_t j) { return b.immovable(j); });
   }
   // Its near pairs, less the bodies filed again since, which the overlay then gives.
   const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
@@ -126,6 +113,8 @@ void ChainState::gather_overlaps(StepContext& ctx, std::uint32_t around,
     }
   }
   bp.for_each_stale_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
+  return std::any_of(out.begin() + from, out.end(),
+                     [&](std::uint32_t j) { return b.immovable(j); });
 }
 
 void ChainState::report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,

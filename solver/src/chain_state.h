@@ -4,6 +4,7 @@
 // the step first reached each body (layout.h renumbers the bodies by it).
 #pragma once
 
+#include "box_overlap.h"
 #include "step_context.h"
 
 #include <cstdint>
@@ -29,11 +30,25 @@ class ChainState {
 
   // Appends to `out` every body that now overlaps `around`: from its near pairs and the bodies the
   // broadphase filed again since they were taken, or, when `around` itself was filed again, from
-  // the grid.
-  void gather_overlaps(StepContext& ctx, std::uint32_t around,
-                       std::vector<std::uint32_t>& out) const;
+  // the grid. True when one of them is immovable. Inline: every body a chain reaches takes it.
+  bool gather_overlaps(StepContext& ctx, std::uint32_t around,
+                       std::vector<std::uint32_t>& out) const {
+    if (!ctx.broadphase.near_pairs_hold()) [[unlikely]]
+      return gather_overlaps_refiled(ctx, around, out);
+    // Every body that moved less than the broadphase's refile distance since the near pairs were
+    // taken closed by less than the slack with any other such body: every one of them that
+    // overlaps `around` now is among its near pairs.
+    const std::uint32_t dynamic_end = ctx.bodies.dynamic_end;
+    bool immovable = false;
+    for_each_hit(ctx.bodies.box.data(), around, near(around), ctx.def.touch_tolerance,
+                 [&](std::uint32_t j) {
+                   out.push_back(j);
+                   immovable |= j >= dynamic_end;
+                 });
+    return immovable;
+  }
   // gather_overlaps once some body was filed again since the near pairs were taken.
-  void gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
+  bool gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
                                std::vector<std::uint32_t>& out) const;
 
   // Direction in which c is pushed out of `from` along axis (+1 or -1).

@@ -25,6 +25,8 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
     state.wall(root.body, root.axis);
     against_[root.body] = root.wall;
   }
+  // Kept in a register: written through ctx, it would be reloaded after every store of the loop.
+  std::uint32_t max_depth = ctx.stats.max_depth;
   for (std::size_t k = 0; k < queue_.size() && !state.cut; ++k) {
     const Item item = queue_[k];
     const std::uint32_t w = item.body;
@@ -32,15 +34,16 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
     const int axis = item.axis;
     auto p = [&](std::uint32_t i) { return ctx.bodies.pos(axis, i); };
     auto h = [&](std::uint32_t i) { return ctx.bodies.half(axis, i); };
-    ctx.stats.max_depth = std::max(ctx.stats.max_depth, item.depth);
+    max_depth = std::max(max_depth, item.depth);
     cands_.clear();
-    state.gather_overlaps(ctx, w, cands_);
     // Only an immovable body other than its wall can squeeze w: most walls meet none, and skip
     // the call.
-    for (const std::uint32_t d : cands_) {
-      if (d != item.wall && ctx.bodies.immovable(d)) {
-        crush_check(ctx, state, item);
-        break;
+    if (state.gather_overlaps(ctx, w, cands_)) {
+      for (const std::uint32_t d : cands_) {
+        if (d != item.wall && ctx.bodies.immovable(d)) {
+          crush_check(ctx, state, item);
+          break;
+        }
       }
     }
     for (std::size_t i = 0; i < cands_.size(); ++i) {
@@ -113,6 +116,7 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
           {c, w, item.depth + 1, item.anchor, item.axis, static_cast<std::int8_t>(-dir)});
     }
   }
+  ctx.stats.max_depth = max_depth;
   queue_.clear();
 }
 

@@ -44,13 +44,11 @@ class VelocityResponse {
   const std::vector<Link>& links() const { return links_; }
 
  private:
-  // Per dynamic slot: the groups of one axis.
+  // Per dynamic slot: the groups of one axis (parent_ kNoSlot: in none).
   struct Groups {
     std::vector<std::uint32_t> parent_, root_;
-    std::vector<std::uint8_t> member_;
     std::vector<double> mass_, momentum_, anchor_sum_, restitution_, spread_;
     std::vector<std::uint32_t> anchor_count_;
-    std::uint32_t find(std::uint32_t i);
   };
   void apply_axis(Bodies& bodies, int axis, double restitution_threshold, Groups& g) const;
 

@@ -108,6 +108,20 @@ class ChainState {
     marks_[body].visited = marks_[body].walled = stamp_;
     marks_[body].walled_axis = static_cast<std::int8_t>(axis);
   }
+  // wall(body, axis), then support(axis, body, direction, anchor): the walls' loop does both for
+  // every body it places.
+  void wall_supported(std::uint32_t body, int axis, int direction, std::uint32_t anchor) {
+    reach(body);
+    Marks& m = marks_[body];
+    m.visited = m.walled = stamp_;
+    m.walled_axis = static_cast<std::int8_t>(axis);
+    if (m.support_sweep != sweep_) {
+      m.support_sweep = sweep_;
+      m.support_dir[0] = m.support_dir[1] = 0;
+    }
+    m.support_dir[axis] = static_cast<std::int8_t>(direction);
+    m.support_anchor = anchor;
+  }
   // Bodies held by frames still open (they follow back when their frame closes).
   std::uint32_t& on_stack(std::uint32_t body) { return marks_[body].on_stack; }
   std::uint32_t on_stack(std::uint32_t body) const { return marks_[body].on_stack; }

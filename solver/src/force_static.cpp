@@ -109,9 +109,8 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
         state.flag(w, c);
         continue;
       }
-      state.wall(c, axis);
+      state.wall_supported(c, axis, -dir, item.anchor);
       against_[c] = w;
-      state.support(axis, c, -dir, item.anchor);
       queue_.push_back(
           {c, w, item.depth + 1, item.anchor, item.axis, static_cast<std::int8_t>(-dir)});
     }

@@ -30,14 +30,18 @@ template <class Fn>
 inline void for_each_hit(const Bodies::Box* box, std::uint32_t i,
                          std::span<const std::uint32_t> list, double tol, Fn&& fn) {
 #if defined(__SSE2__)
+  // Written so that every destructive SSE2 operation lands on a value loaded for this entry, and
+  // no loop-invariant register needs a copy: |x_j - x| is |x - x_j| (a - b is -(b - a) exactly),
+  // hx_j + hx is hx + hx_j, and with depth = (hx + hx_j) - |x - x_j|, the lane computes -depth
+  // exactly and tests -depth < -tol, which holds exactly when depth > tol.
   const __m128d centre = _mm_loadu_pd(box[i].center), half = _mm_loadu_pd(box[i].half);
-  const __m128d tolerance = _mm_set1_pd(tol);
+  const __m128d minus_tolerance = _mm_set1_pd(-tol);
   const __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffff));
   for (const std::uint32_t j : list) {
     const Bodies::Box& b = box[j];
-    const __m128d distance = _mm_and_pd(_mm_sub_pd(centre, _mm_loadu_pd(b.center)), magnitude);
-    const __m128d depth = _mm_sub_pd(_mm_add_pd(half, _mm_loadu_pd(b.half)), distance);
-    if (_mm_movemask_pd(_mm_cmpgt_pd(depth, tolerance)) == 3) fn(j);
+    const __m128d distance = _mm_and_pd(_mm_sub_pd(_mm_loadu_pd(b.center), centre), magnitude);
+    const __m128d minus_depth = _mm_sub_pd(distance, _mm_add_pd(_mm_loadu_pd(b.half), half));
+    if (_mm_movemask_pd(_mm_cmplt_pd(minus_depth, minus_tolerance)) == 3) fn(j);
   }
 #else
   const double x = box[i].center[0], y = box[i].center[1];

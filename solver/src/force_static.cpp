@@ -64,26 +64,13 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
       // The side c started the step on: a wall lands where its own wall puts it, which may be on
       // or past c's middle, and c is still pushed on the side it was on.
       const int dir = ChainState::side_at_start(ctx, axis, w, c);
-      if (dir == item.backing) {
-        // c lies between the wall and the wall's own support. If c rests on that side too, the
-        // wall rests on c; otherwise c is not this wall's to push.
-        if (!state.supported_towards(axis, c, dir)) {
-          state.flag(w, c);
-          continue;
-        }
-        // The overlap a squeezed row keeps between its bodies is contact: nothing to yield.
-        if (squeezes_ && (axis == 0 ? o.x : o.y) <= kept_squeeze(ctx, w, c, axis) + tol) continue;
-        if (!state.spend(ctx)) break;
-        if (!yield(ctx, state, w, c, axis)) {
-          state.flag(w, c);  // a body beyond w keeps it from yielding: the next sweep takes it
-          continue;
-        }
-        cands_.clear();  // w moved: look again from its new place
-        state.gather_overlaps(ctx, w, cands_);
-        i = static_cast<std::size_t>(-1);
+      if (dir == item.backing) [[unlikely]] {
+        const Between next = between(ctx, state, w, c, axis, axis == 0 ? o.x : o.y);
+        if (next == Between::kStop) break;
+        if (next == Between::kAgain) i = static_cast<std::size_t>(-1);
         continue;
       }
-      if (state.supported_towards(axis, c, dir)) {
+      if (state.supported_towards(axis, c, dir)) [[unlikely]] {
         // Supported beyond the wall while the wall is supported behind: a squeeze.
         if (squeeze(ctx, state, item, c, dir)) break;
         continue;
@@ -102,7 +89,7 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
       const double flush = p(w) + dir * (h(c) + h(w) - kept_squeeze(ctx, c, w, axis));
       const WallsOf walls{&state, axis};
       ctx.place(c, axis, flush, kNoSlot, true, &WallsOf::passes, &walls);
-      if (p(c) != flush) {
+      if (p(c) != flush) [[unlikely]] {
         // Stopped short: not flush, so not a wall this chain can build on; the next sweep
         // resolves what is left.
         state.visit(c);
@@ -117,6 +104,31 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
   }
   ctx.stats.max_depth = max_depth;
   queue_.clear();
+}
+
+// Kept out of run(): rare, and inlined there it took registers from the common path.
+[[gnu::noinline]] ForceStatic::Between ForceStatic::between(StepContext& ctx, ChainState& state,
+                                                            std::uint32_t w, std::uint32_t c,
+                                                            int axis, double depth) {
+  // c lies between the wall and the wall's own support. If c rests on that side too, the wall
+  // rests on c; otherwise c is not this wall's to push.
+  const int dir = ChainState::side_at_start(ctx, axis, w, c);
+  if (!state.supported_towards(axis, c, dir)) {
+    state.flag(w, c);
+    return Between::kNext;
+  }
+  // The overlap a squeezed row keeps between its bodies is contact: nothing to yield.
+  if (squeezes_ && depth <= kept_squeeze(ctx, w, c, axis) + ctx.def.touch_tolerance) {
+    return Between::kNext;
+  }
+  if (!state.spend(ctx)) return Between::kStop;
+  if (!yield(ctx, state, w, c, axis)) {
+    state.flag(w, c);  // a body beyond w keeps it from yielding: the next sweep takes it
+    return Between::kNext;
+  }
+  cands_.clear();  // w moved: look again from its new place
+  state.gather_overlaps(ctx, w, cands_);
+  return Between::kAgain;
 }
 
 bool ForceStatic::yield(StepContext& ctx, ChainState& state, std::uint32_t w, std::uint32_t c,

@@ -47,18 +47,19 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
   contacts_.clear();
   if (bp.near_pairs_hold()) {
     const Bodies::Box* const box = bodies.box.data();
+    const OverlapTest test(tol);
     // With workers: bodies [begin, end) write their contacts to `out`, at most one per entry.
     auto scan = [&](std::uint32_t begin, std::uint32_t end, Pair* out) {
       Pair* o = out;
       for (std::uint32_t i = begin; i < end; ++i) {
-        for_each_hit(box, i, state_.lower(i), tol, [&](std::uint32_t j) { *o++ = {j, i}; });
+        for_each_hit(box, i, state_.lower(i), test, [&o, i](std::uint32_t j) { *o++ = {j, i}; });
       }
       return static_cast<std::uint32_t>(o - out);
     };
     const std::uint32_t n = bodies.size();
     if (ctx.pool.threads() == 1 || n <= kBlock) {
       for (std::uint32_t i = 0; i < n; ++i) {
-        for_each_hit(box, i, state_.lower(i), tol, [&](std::uint32_t j) {
+        for_each_hit(box, i, state_.lower(i), test, [this, i](std::uint32_t j) {
           contacts_.push_back({j, i});
         });
       }

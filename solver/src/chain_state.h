@@ -40,7 +40,7 @@ class ChainState {
     // overlaps `around` now is among its near pairs.
     const std::uint32_t dynamic_end = ctx.bodies.dynamic_end;
     bool immovable = false;
-    for_each_hit(ctx.bodies.box.data(), around, near(around), ctx.def.touch_tolerance,
+    for_each_hit(ctx.bodies.box.data(), around, near(around), OverlapTest(ctx.def.touch_tolerance),
                  [&](std::uint32_t j) {
                    out.push_back(j);
                    immovable |= j >= dynamic_end;

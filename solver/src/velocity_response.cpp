@@ -73,7 +73,9 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
   double max_restitution = 0.0;
   for (std::uint32_t i = 0; i < n; ++i) {
     if (parent[i] == kNoSlot) continue;
-    const std::uint32_t r = root[i] = find(i);
+    // A parent is a member of a smaller slot (unions hang the larger root under the smaller), so
+    // its root is known by now: find(i) without walking the path.
+    const std::uint32_t r = root[i] = parent[i] == i ? i : root[parent[i]];
     if (r == i) {
       mass[r] = momentum[r] = anchor_sum[r] = restitution[r] = spread[r] = 0.0;
       anchor_count[r] = 0;

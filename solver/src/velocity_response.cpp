@@ -55,12 +55,20 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
   };
   // kNoSlot: in no group. A body joins as a group of its own when a link first names it.
   std::fill_n(parent, n, kNoSlot);
+  // The closing links to immovable bodies, in link order, for the anchors' pass: allocates only
+  // when links_ itself did.
+  std::vector<const Link*>& anchored = g.anchored_;
+  if (anchored.capacity() < links_.capacity()) anchored.reserve(links_.capacity());
+  anchored.clear();
   bool any = false;
   for (const Link& l : links_) {
     if (l.axis != axis || !closing(l)) continue;
     any = true;
     if (parent[l.a] == kNoSlot) parent[l.a] = l.a;
-    if (l.b >= n) continue;  // immovable
+    if (l.b >= n) {  // immovable
+      anchored.push_back(&l);
+      continue;
+    }
     if (parent[l.b] == kNoSlot) parent[l.b] = l.b;
     const std::uint32_t ra = find(l.a), rb = find(l.b);
     // The smaller slot becomes the root, so groups do not depend on link order.
@@ -85,8 +93,8 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
     restitution[r] = std::max(restitution[r], body_restitution[i]);
     max_restitution = std::max(max_restitution, body_restitution[i]);
   }
-  for (const Link& l : links_) {
-    if (l.axis != axis || l.b < n || !closing(l)) continue;
+  for (const Link* const anchor : anchored) {
+    const Link& l = *anchor;
     const std::uint32_t r = root[l.a];
     anchor_sum[r] += v[l.b];
     ++anchor_count[r];

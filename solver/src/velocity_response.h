@@ -49,6 +49,7 @@ class VelocityResponse {
     std::vector<std::uint32_t> parent_, root_;
     std::vector<double> mass_, momentum_, anchor_sum_, restitution_, spread_;
     std::vector<std::uint32_t> anchor_count_;
+    std::vector<const Link*> anchored_;  // this pass's closing links to immovable bodies
   };
   void apply_axis(Bodies& bodies, int axis, double restitution_threshold, Groups& g) const;
 

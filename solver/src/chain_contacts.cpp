@@ -58,11 +58,12 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     };
     const std::uint32_t n = bodies.size();
     if (ctx.pool.threads() == 1 || n <= kBlock) {
-      for (std::uint32_t i = 0; i < n; ++i) {
-        for_each_hit(box, i, state_.lower(i), test, [this, i](std::uint32_t j) {
-          contacts_.push_back({j, i});
-        });
-      }
+      // Into found_pairs_ (room for an entry each, kept from step to step), then copied: pushed
+      // back one by one, the walk kept its constants on the stack for the growing path's call
+      // and reloaded them at every body.
+      if (found_pairs_.size() < state_.lower_offset(n)) found_pairs_.resize(state_.lower_offset(n));
+      contacts_.assign(found_pairs_.begin(),
+                       found_pairs_.begin() + scan(0, n, found_pairs_.data()));
       return;
     }
     // Blocks of bodies at once, each into its own stretch of found_ (as long as its lower lists),

@@ -17,6 +17,7 @@ void ChainState::begin_step(StepContext& ctx) {
     lower_start_.reserve(n + 1);
     lower_.reserve(4 * n);
     ctx.crushes.reserve(std::min<std::size_t>(n, 1024));
+    refiled_.reserve(64);
   }
   // Each holds a body at most once; checked every step, as a copied world's vectors come without
   // the capacity of the original's.
@@ -115,6 +116,16 @@ void ChainState::begin_chain() {
   bp.for_each_stale_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
   return std::any_of(out.begin() + from, out.end(),
                      [&](std::uint32_t j) { return b.immovable(j); });
+}
+
+bool ChainState::gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
+                                         SlotList& out) const {
+  refiled_.clear();
+  const bool immovable = gather_overlaps_refiled(ctx, around, refiled_);
+  out.room_for(refiled_.size());
+  for (const std::uint32_t j : refiled_)
+    out.push(j);
+  return immovable;
 }
 
 void ChainState::report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,

@@ -5,10 +5,12 @@
 #pragma once
 
 #include "box_overlap.h"
+#include "slot_list.h"
 #include "step_context.h"
 
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace chain::detail {
@@ -31,18 +33,24 @@ class ChainState {
   // Appends to `out` every body that now overlaps `around`: from its near pairs and the bodies the
   // broadphase filed again since they were taken, or, when `around` itself was filed again, from
   // the grid. True when one of them is immovable. Inline: every body a chain reaches takes it.
-  bool gather_overlaps(StepContext& ctx, std::uint32_t around,
-                       std::vector<std::uint32_t>& out) const {
+  template <class Out>
+  bool gather_overlaps(StepContext& ctx, std::uint32_t around, Out& out) const {
     if (!ctx.broadphase.near_pairs_hold()) [[unlikely]]
       return gather_overlaps_refiled(ctx, around, out);
     // Every body that moved less than the broadphase's refile distance since the near pairs were
     // taken closed by less than the slack with any other such body: every one of them that
     // overlaps `around` now is among its near pairs.
+    const std::span<const std::uint32_t> list = near(around);
     const std::uint32_t dynamic_end = ctx.bodies.dynamic_end;
     bool immovable = false;
-    for_each_hit(ctx.bodies.box.data(), around, near(around), OverlapTest(ctx.def.touch_tolerance),
+    if constexpr (std::is_same_v<Out, SlotList>) out.room_for(list.size());
+    for_each_hit(ctx.bodies.box.data(), around, list, OverlapTest(ctx.def.touch_tolerance),
                  [&](std::uint32_t j) {
-                   out.push_back(j);
+                   if constexpr (std::is_same_v<Out, SlotList>) {
+                     out.push(j);
+                   } else {
+                     out.push_back(j);
+                   }
                    immovable |= j >= dynamic_end;
                  });
     return immovable;
@@ -50,6 +58,7 @@ class ChainState {
   // gather_overlaps once some body was filed again since the near pairs were taken.
   bool gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
                                std::vector<std::uint32_t>& out) const;
+  bool gather_overlaps_refiled(StepContext& ctx, std::uint32_t around, SlotList& out) const;
 
   // Direction in which c is pushed out of `from` along axis (+1 or -1).
   static int away(const StepContext& ctx, int axis, std::uint32_t from, std::uint32_t c) {
@@ -212,6 +221,7 @@ class ChainState {
   std::uint32_t step_ = 0;
   std::uint32_t sweep_ = 0;
   std::vector<std::uint32_t> suspects_;
+  mutable std::vector<std::uint32_t> refiled_;  // gather_overlaps_refiled's list for a SlotList
   std::uint32_t suspect_stamp_ = 1;
   std::vector<std::uint32_t> reach_order_;  // each body at most once a step: capacity n
   std::size_t reach_jumps_ = 0;

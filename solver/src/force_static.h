@@ -88,7 +88,7 @@ class ForceStatic {
                    int axis);
 
   std::vector<Item> queue_;
-  std::vector<std::uint32_t> cands_;
+  SlotList cands_;
   // An immovable body counts as squeezed: it is the end of every row.
   bool squeezed_before(const StepContext& ctx, std::uint32_t body) const {
     return ctx.bodies.immovable(body) || squeezed_[body] + 1 >= step_;

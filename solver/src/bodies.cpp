@@ -90,7 +90,7 @@ void Bodies::append(const BodyDef& def, std::uint32_t body_id) {
   drive_x.push_back(0.0);
   drive_y.push_back(0.0);
   driven.push_back(0);
-  touching.push_back(0);
+  touching.push_back(TouchBits{});
   type.push_back(def.type);
   id.push_back(body_id);
 }
@@ -140,8 +140,8 @@ void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id) {
 }
 
 void Bodies::Spare::reserve(std::size_t n) {
-  box.reserve(n), point.reserve(n), real.reserve(n), byte.reserve(n), word.reserve(n),
-      type.reserve(n);
+  box.reserve(n), point.reserve(n), real.reserve(n), byte.reserve(n), touch.reserve(n),
+      word.reserve(n), type.reserve(n);
 }
 
 void Bodies::permute(std::span<const std::uint32_t> order, Spare& spare) {
@@ -149,7 +149,7 @@ void Bodies::permute(std::span<const std::uint32_t> order, Spare& spare) {
   gather(start, order, spare.point);
   for (auto* v : {&vx, &vy, &mass, &gravity_scale, &restitution, &friction, &drive_x, &drive_y})
     gather(*v, order, spare.real);
-  gather(driven, order, spare.byte), gather(touching, order, spare.byte);
+  gather(driven, order, spare.byte), gather(touching, order, spare.touch);
   gather(type, order, spare.type), gather(id, order, spare.word);
 }
 

@@ -27,6 +27,14 @@ struct Point {
 inline constexpr std::uint8_t kDriveX = 1u;
 inline constexpr std::uint8_t kDriveY = 2u;
 
+// A body's touching:: bits. A type of its own rather than std::uint8_t: a store through a
+// character type may alias any object, and after each of the two the walls' loop makes for every
+// push, the compiler reloaded every vector's data pointer it had read.
+enum class TouchBits : std::uint8_t {};
+inline void add_touch(TouchBits& t, std::uint8_t bits) {
+  t = static_cast<TouchBits>(static_cast<std::uint8_t>(t) | bits);
+}
+
 struct Bodies {
   // Centre and half extents together: every overlap test reads all four, and a chain reaches
   // bodies in no fixed order, so one cache line per body beats four.
@@ -45,7 +53,7 @@ struct Bodies {
   // Movable bodies: the centre at the start of the current step, before integration. Which face
   // a body came in through, and the path a fast body swept, are read from it.
   std::vector<Point> start;
-  std::vector<std::uint8_t> touching;  // touching:: bits of the last step
+  std::vector<TouchBits> touching;  // touching:: bits of the last step
   std::vector<BodyType> type;
   std::vector<std::uint32_t> id;  // BodyId value of each slot
 
@@ -80,6 +88,7 @@ struct Bodies {
     std::vector<Point> point;
     std::vector<double> real;
     std::vector<std::uint8_t> byte;
+    std::vector<TouchBits> touch;
     std::vector<std::uint32_t> word;
     std::vector<BodyType> type;
     void reserve(std::size_t n);

@@ -3,6 +3,7 @@
 // in the order it entered them).
 #include "chain_resolver.h"
 
+#include "box_overlap.h"
 #include "entry_face.h"
 
 #include <algorithm>
@@ -45,44 +46,37 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
   // its own turn (those with another such body at the later one), and is skipped in near lists.
   contacts_.clear();
   if (bp.near_pairs_hold()) {
-    // With workers: bodies [begin, end) write their contacts to `out`, at most one per near entry.
+    const Bodies::Box* const box = bodies.box.data();
+    const OverlapTest test(tol);
+    // With workers: bodies [begin, end) write their contacts to `out`, at most one per entry.
     auto scan = [&](std::uint32_t begin, std::uint32_t end, Pair* out) {
       Pair* o = out;
       for (std::uint32_t i = begin; i < end; ++i) {
-        const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
-        for (const std::uint32_t j : state_.near(i)) {
-          if (j < i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
-              (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol) {
-            *o++ = {j, i};
-          }
-        }
+        for_each_hit(box, i, state_.lower(i), test, [&o, i](std::uint32_t j) { *o++ = {j, i}; });
       }
       return static_cast<std::uint32_t>(o - out);
     };
     const std::uint32_t n = bodies.size();
     if (ctx.pool.threads() == 1 || n <= kBlock) {
-      for (std::uint32_t i = 0; i < n; ++i) {
-        const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
-        for (const std::uint32_t j : state_.near(i)) {
-          if (j < i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
-              (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol) {
-            contacts_.push_back({j, i});
-          }
-        }
-      }
+      // Into found_pairs_ (room for an entry each, kept from step to step), then copied: pushed
+      // back one by one, the walk kept its constants on the stack for the growing path's call
+      // and reloaded them at every body.
+      if (found_pairs_.size() < state_.lower_offset(n)) found_pairs_.resize(state_.lower_offset(n));
+      contacts_.assign(found_pairs_.begin(),
+                       found_pairs_.begin() + scan(0, n, found_pairs_.data()));
       return;
     }
-    // Blocks of bodies at once, each into its own stretch of found_ (as long as its near lists),
+    // Blocks of bodies at once, each into its own stretch of found_ (as long as its lower lists),
     // then joined in block order: slot order, as one thread.
     const std::uint32_t blocks = (n + kBlock - 1) / kBlock;
     block_found_.resize(blocks);
-    found_pairs_.resize(state_.near_offset(n));
+    found_pairs_.resize(state_.lower_offset(n));
     ctx.pool.run(blocks, [&](std::uint32_t k) {
       const std::uint32_t begin = k * kBlock, end = std::min(n, begin + kBlock);
-      block_found_[k] = scan(begin, end, found_pairs_.data() + state_.near_offset(begin));
+      block_found_[k] = scan(begin, end, found_pairs_.data() + state_.lower_offset(begin));
     });
     for (std::uint32_t k = 0; k < blocks; ++k) {
-      const auto from = found_pairs_.begin() + state_.near_offset(k * kBlock);
+      const auto from = found_pairs_.begin() + state_.lower_offset(k * kBlock);
       contacts_.insert(contacts_.end(), from, from + block_found_[k]);
     }
     return;

@@ -17,7 +17,7 @@ void ChainResolver::resolve(StepContext& ctx) {
       v->reserve(n + 3);
     contacts_.reserve(2 * n), ordered_.reserve(2 * n), adj_.reserve(4 * n),
         near_pairs_.reserve(4 * n);
-    if (ctx.pool.threads() > 1) found_pairs_.reserve(8 * n);
+    found_pairs_.reserve(4 * n);
   }
   state_.begin_step(ctx);
   walls_.begin_step(bodies.size());

@@ -14,7 +14,10 @@ void ChainState::begin_step(StepContext& ctx) {
     forget_slots();
     near_start_.reserve(n + 2);
     near_.reserve(8 * n);
+    lower_start_.reserve(n + 1);
+    lower_.reserve(4 * n);
     ctx.crushes.reserve(std::min<std::size_t>(n, 1024));
+    refiled_.reserve(64);
   }
   // Each holds a body at most once; checked every step, as a copied world's vectors come without
   // the capacity of the original's.
@@ -57,6 +60,17 @@ void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near
     near_[near_start_[p.a + 1]++] = p.b;
     near_[near_start_[p.b + 1]++] = p.a;
   }
+  // Each body's lower neighbours, in the order of its near list.
+  lower_start_.resize(n + 1);
+  lower_.resize(near_.size() / 2);
+  std::uint32_t fill = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    lower_start_[i] = fill;
+    for (std::uint32_t k = near_start_[i]; k < near_start_[i + 1]; ++k) {
+      if (near_[k] < i) lower_[fill++] = near_[k];
+    }
+  }
+  lower_start_[n] = fill;
 }
 
 void ChainState::clear_suspects() {
@@ -77,37 +91,18 @@ void ChainState::begin_chain() {
   cut = false;
 }
 
-void ChainState::gather_overlaps(StepContext& ctx, std::uint32_t around,
-                                 std::vector<std::uint32_t>& out) const {
-  if (!ctx.broadphase.near_pairs_hold()) {
-    gather_overlaps_refiled(ctx, around, out);
-    return;
-  }
-  // Every body that moved less than the broadphase's refile distance since the near pairs were
-  // taken closed by less than the slack with any other such body: every one of them that overlaps
-  // `around` now is among its near pairs.
-  const double tol = ctx.def.touch_tolerance;
-  const Bodies& b = ctx.bodies;
-  const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
-  for (std::uint32_t k = near_start_[around]; k < near_start_[around + 1]; ++k) {
-    const std::uint32_t j = near_[k];
-    if ((hx + b.hx(j)) - std::abs(x - b.x(j)) > tol &&
-        (hy + b.hy(j)) - std::abs(y - b.y(j)) > tol) {
-      out.push_back(j);
-    }
-  }
-}
-
 // Kept out of gather_overlaps: the near-pair loop above runs for every body a chain reaches, and
 // the broadphase queries here, inlined into it, slowed it by a tenth.
-[[gnu::noinline]] void ChainState::gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
+[[gnu::noinline]] bool ChainState::gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
                                                            std::vector<std::uint32_t>& out) const {
+  const std::size_t from = out.size();
   const double tol = ctx.def.touch_tolerance;
   const Broadphase& bp = ctx.broadphase;
   const Bodies& b = ctx.bodies;
   if (bp.stale(around)) {  // filed again since the near pairs were taken: they do not hold for it
     bp.for_each_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
-    return;
+    return std::any_of(out.begin() + from, out.end(),
+                       [&](std::uint32_t j) { return b.immovable(j); });
   }
   // Its near pairs, less the bodies filed again since, which the overlay then gives.
   const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
@@ -119,6 +114,18 @@ void ChainState::gather_overlaps(StepContext& ctx, std::uint32_t around,
     }
   }
   bp.for_each_stale_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
+  return std::any_of(out.begin() + from, out.end(),
+                     [&](std::uint32_t j) { return b.immovable(j); });
+}
+
+bool ChainState::gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
+                                         SlotList& out) const {
+  refiled_.clear();
+  const bool immovable = gather_overlaps_refiled(ctx, around, refiled_);
+  out.room_for(refiled_.size());
+  for (const std::uint32_t j : refiled_)
+    out.push(j);
+  return immovable;
 }
 
 void ChainState::report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,

@@ -4,10 +4,13 @@
 // the step first reached each body (layout.h renumbers the bodies by it).
 #pragma once
 
+#include "box_overlap.h"
+#include "slot_list.h"
 #include "step_context.h"
 
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace chain::detail {
@@ -29,12 +32,33 @@ class ChainState {
 
   // Appends to `out` every body that now overlaps `around`: from its near pairs and the bodies the
   // broadphase filed again since they were taken, or, when `around` itself was filed again, from
-  // the grid.
-  void gather_overlaps(StepContext& ctx, std::uint32_t around,
-                       std::vector<std::uint32_t>& out) const;
+  // the grid. True when one of them is immovable. Inline: every body a chain reaches takes it.
+  template <class Out>
+  bool gather_overlaps(StepContext& ctx, std::uint32_t around, Out& out) const {
+    if (!ctx.broadphase.near_pairs_hold()) [[unlikely]]
+      return gather_overlaps_refiled(ctx, around, out);
+    // Every body that moved less than the broadphase's refile distance since the near pairs were
+    // taken closed by less than the slack with any other such body: every one of them that
+    // overlaps `around` now is among its near pairs.
+    const std::span<const std::uint32_t> list = near(around);
+    const std::uint32_t dynamic_end = ctx.bodies.dynamic_end;
+    bool immovable = false;
+    if constexpr (std::is_same_v<Out, SlotList>) out.room_for(list.size());
+    for_each_hit(ctx.bodies.box.data(), around, list, OverlapTest(ctx.def.touch_tolerance),
+                 [&](std::uint32_t j) {
+                   if constexpr (std::is_same_v<Out, SlotList>) {
+                     out.push(j);
+                   } else {
+                     out.push_back(j);
+                   }
+                   immovable |= j >= dynamic_end;
+                 });
+    return immovable;
+  }
   // gather_overlaps once some body was filed again since the near pairs were taken.
-  void gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
+  bool gather_overlaps_refiled(StepContext& ctx, std::uint32_t around,
                                std::vector<std::uint32_t>& out) const;
+  bool gather_overlaps_refiled(StepContext& ctx, std::uint32_t around, SlotList& out) const;
 
   // Direction in which c is pushed out of `from` along axis (+1 or -1).
   static int away(const StepContext& ctx, int axis, std::uint32_t from, std::uint32_t c) {
@@ -71,6 +95,13 @@ class ChainState {
   std::span<const std::uint32_t> near(std::uint32_t body) const {
     return {near_.data() + near_start_[body], near_.data() + near_start_[body + 1]};
   }
+  // The same, less the bodies of higher slots: a pair is taken at its later body (gather_contacts)
+  // without reading the other half of the list. Where lower(body) starts among them all, in slot
+  // order.
+  std::span<const std::uint32_t> lower(std::uint32_t body) const {
+    return {lower_.data() + lower_start_[body], lower_.data() + lower_start_[body + 1]};
+  }
+  std::uint32_t lower_offset(std::uint32_t body) const { return lower_start_[body]; }
 
   bool visited(std::uint32_t body) const { return marks_[body].visited == stamp_; }
   void visit(std::uint32_t body) {
@@ -85,6 +116,20 @@ class ChainState {
     reach(body);
     marks_[body].visited = marks_[body].walled = stamp_;
     marks_[body].walled_axis = static_cast<std::int8_t>(axis);
+  }
+  // wall(body, axis), then support(axis, body, direction, anchor): the walls' loop does both for
+  // every body it places.
+  void wall_supported(std::uint32_t body, int axis, int direction, std::uint32_t anchor) {
+    reach(body);
+    Marks& m = marks_[body];
+    m.visited = m.walled = stamp_;
+    m.walled_axis = static_cast<std::int8_t>(axis);
+    if (m.support_sweep != sweep_) {
+      m.support_sweep = sweep_;
+      m.support_dir[0] = m.support_dir[1] = 0;
+    }
+    m.support_dir[axis] = static_cast<std::int8_t>(direction);
+    m.support_anchor = anchor;
   }
   // Bodies held by frames still open (they follow back when their frame closes).
   std::uint32_t& on_stack(std::uint32_t body) { return marks_[body].on_stack; }
@@ -169,12 +214,14 @@ class ChainState {
     reach_order_.push_back(body);
   }
 
-  std::vector<std::uint32_t> near_start_, near_;  // near pairs as adjacency lists
+  std::vector<std::uint32_t> near_start_, near_;    // near pairs as adjacency lists
+  std::vector<std::uint32_t> lower_start_, lower_;  // their entries of lower slots
   std::vector<Marks> marks_;
   std::uint32_t stamp_ = 0;
   std::uint32_t step_ = 0;
   std::uint32_t sweep_ = 0;
   std::vector<std::uint32_t> suspects_;
+  mutable std::vector<std::uint32_t> refiled_;  // gather_overlaps_refiled's list for a SlotList
   std::uint32_t suspect_stamp_ = 1;
   std::vector<std::uint32_t> reach_order_;  // each body at most once a step: capacity n
   std::size_t reach_jumps_ = 0;

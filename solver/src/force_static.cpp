@@ -25,6 +25,8 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
     state.wall(root.body, root.axis);
     against_[root.body] = root.wall;
   }
+  // Kept in a register: written through ctx, it would be reloaded after every store of the loop.
+  std::uint32_t max_depth = ctx.stats.max_depth;
   for (std::size_t k = 0; k < queue_.size() && !state.cut; ++k) {
     const Item item = queue_[k];
     const std::uint32_t w = item.body;
@@ -32,10 +34,18 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
     const int axis = item.axis;
     auto p = [&](std::uint32_t i) { return ctx.bodies.pos(axis, i); };
     auto h = [&](std::uint32_t i) { return ctx.bodies.half(axis, i); };
-    ctx.stats.max_depth = std::max(ctx.stats.max_depth, item.depth);
+    max_depth = std::max(max_depth, item.depth);
     cands_.clear();
-    state.gather_overlaps(ctx, w, cands_);
-    crush_check(ctx, state, item);
+    // Only an immovable body other than its wall can squeeze w: most walls meet none, and skip
+    // the call.
+    if (state.gather_overlaps(ctx, w, cands_)) {
+      for (const std::uint32_t d : cands_) {
+        if (d != item.wall && ctx.bodies.immovable(d)) {
+          crush_check(ctx, state, item);
+          break;
+        }
+      }
+    }
     for (std::size_t i = 0; i < cands_.size(); ++i) {
       const std::uint32_t c = cands_[i];
       if (ctx.bodies.immovable(c) || state.crushed(c)) continue;
@@ -54,26 +64,13 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
       // The side c started the step on: a wall lands where its own wall puts it, which may be on
       // or past c's middle, and c is still pushed on the side it was on.
       const int dir = ChainState::side_at_start(ctx, axis, w, c);
-      if (dir == item.backing) {
-        // c lies between the wall and the wall's own support. If c rests on that side too, the
-        // wall rests on c; otherwise c is not this wall's to push.
-        if (!state.supported_towards(axis, c, dir)) {
-          state.flag(w, c);
-          continue;
-        }
-        // The overlap a squeezed row keeps between its bodies is contact: nothing to yield.
-        if (squeezes_ && (axis == 0 ? o.x : o.y) <= kept_squeeze(ctx, w, c, axis) + tol) continue;
-        if (!state.spend(ctx)) break;
-        if (!yield(ctx, state, w, c, axis)) {
-          state.flag(w, c);  // a body beyond w keeps it from yielding: the next sweep takes it
-          continue;
-        }
-        cands_.clear();  // w moved: look again from its new place
-        state.gather_overlaps(ctx, w, cands_);
-        i = static_cast<std::size_t>(-1);
+      if (dir == item.backing) [[unlikely]] {
+        const Between next = between(ctx, state, w, c, axis, axis == 0 ? o.x : o.y);
+        if (next == Between::kStop) break;
+        if (next == Between::kAgain) i = static_cast<std::size_t>(-1);
         continue;
       }
-      if (state.supported_towards(axis, c, dir)) {
+      if (state.supported_towards(axis, c, dir)) [[unlikely]] {
         // Supported beyond the wall while the wall is supported behind: a squeeze.
         if (squeeze(ctx, state, item, c, dir)) break;
         continue;
@@ -92,21 +89,46 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
       const double flush = p(w) + dir * (h(c) + h(w) - kept_squeeze(ctx, c, w, axis));
       const WallsOf walls{&state, axis};
       ctx.place(c, axis, flush, kNoSlot, true, &WallsOf::passes, &walls);
-      if (p(c) != flush) {
+      if (p(c) != flush) [[unlikely]] {
         // Stopped short: not flush, so not a wall this chain can build on; the next sweep
         // resolves what is left.
         state.visit(c);
         state.flag(w, c);
         continue;
       }
-      state.wall(c, axis);
+      state.wall_supported(c, axis, -dir, item.anchor);
       against_[c] = w;
-      state.support(axis, c, -dir, item.anchor);
       queue_.push_back(
           {c, w, item.depth + 1, item.anchor, item.axis, static_cast<std::int8_t>(-dir)});
     }
   }
+  ctx.stats.max_depth = max_depth;
   queue_.clear();
+}
+
+// Kept out of run(): rare, and inlined there it took registers from the common path.
+[[gnu::noinline]] ForceStatic::Between ForceStatic::between(StepContext& ctx, ChainState& state,
+                                                            std::uint32_t w, std::uint32_t c,
+                                                            int axis, double depth) {
+  // c lies between the wall and the wall's own support. If c rests on that side too, the wall
+  // rests on c; otherwise c is not this wall's to push.
+  const int dir = ChainState::side_at_start(ctx, axis, w, c);
+  if (!state.supported_towards(axis, c, dir)) {
+    state.flag(w, c);
+    return Between::kNext;
+  }
+  // The overlap a squeezed row keeps between its bodies is contact: nothing to yield.
+  if (squeezes_ && depth <= kept_squeeze(ctx, w, c, axis) + ctx.def.touch_tolerance) {
+    return Between::kNext;
+  }
+  if (!state.spend(ctx)) return Between::kStop;
+  if (!yield(ctx, state, w, c, axis)) {
+    state.flag(w, c);  // a body beyond w keeps it from yielding: the next sweep takes it
+    return Between::kNext;
+  }
+  cands_.clear();  // w moved: look again from its new place
+  state.gather_overlaps(ctx, w, cands_);
+  return Between::kAgain;
 }
 
 bool ForceStatic::yield(StepContext& ctx, ChainState& state, std::uint32_t w, std::uint32_t c,
@@ -124,7 +146,9 @@ bool ForceStatic::yield(StepContext& ctx, ChainState& state, std::uint32_t w, st
 
 // item.body was pushed against item.wall, away from its backing; an immovable body overlapping
 // it beyond, along the chaining axis, squeezes it: it is centred between the two and reported.
-void ForceStatic::crush_check(StepContext& ctx, ChainState& state, const Item& item) {
+// Kept out of run(): called only for the walls that meet an immovable body besides their own.
+[[gnu::noinline]] void ForceStatic::crush_check(StepContext& ctx, ChainState& state,
+                                                const Item& item) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
   const int axis = item.axis;

@@ -57,6 +57,13 @@ class ForceStatic {
     std::uint32_t body, wall, depth, anchor;
     std::int8_t axis, backing;
   };
+  // What run() does after between(): the next candidate, none (the budget ran out), or the
+  // candidates again from the first (w moved).
+  enum class Between { kNext, kStop, kAgain };
+  // Wall w meets c on its backed side (between w and its support), overlapping by `depth` along
+  // axis: w rests on c when c is supported there too (yields).
+  Between between(StepContext& ctx, ChainState& state, std::uint32_t w, std::uint32_t c, int axis,
+                  double depth);
   // Centres item.body between its wall and an immovable body beyond it, if there is one.
   void crush_check(StepContext& ctx, ChainState& state, const Item& item);
   // Moves wall w away from c, which lies on w's supported side and is supported there too; false
@@ -81,7 +88,7 @@ class ForceStatic {
                    int axis);
 
   std::vector<Item> queue_;
-  std::vector<std::uint32_t> cands_;
+  SlotList cands_;
   // An immovable body counts as squeezed: it is the end of every row.
   bool squeezed_before(const StepContext& ctx, std::uint32_t body) const {
     return ctx.bodies.immovable(body) || squeezed_[body] + 1 >= step_;

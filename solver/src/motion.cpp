@@ -9,7 +9,7 @@ namespace chain::detail {
 // is read once and written once: the arrays are separate vectors, which the compiler must assume
 // may alias each other and the vectors' own bookkeeping, so anything else reloads them all on
 // every body.
-template <bool kDynamic, bool kFindFast, bool kKeepVelocities, bool kBlocks>
+template <bool kDynamic, bool kFindFast, bool kKeepVelocities>
 void Motion::integrate_range(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt,
                              std::uint32_t begin, std::uint32_t end, std::uint32_t out,
                              Notes& notes) {
@@ -24,7 +24,7 @@ void Motion::integrate_range(Bodies& b, Broadphase& broadphase, Vec2 gravity, do
   Point* const start = b.start.data();
   Point* const pre = pre_velocity.data();
   std::uint32_t* const fast_out = fast_.data() + out;
-  std::uint32_t* const far_out = kBlocks ? far_.data() + out : nullptr;
+  std::uint32_t* const far_out = far_.data() + out;
   std::uint32_t count = notes.fast, far = notes.far;
   double largest = notes.largest;
   const double refile = broadphase.refile_distance();
@@ -47,14 +47,11 @@ void Motion::integrate_range(Bodies& b, Broadphase& broadphase, Vec2 gravity, do
     box.center[0] = x1;
     box.center[1] = y1;
     start[i] = {x0, y0};
-    if constexpr (kBlocks) {  // the broadphase is shared: noted once every block is done
-      const double d = broadphase.distance(i, x1, y1);
-      largest = std::max(largest, d);
-      if (d > refile) [[unlikely]]
-        far_out[far++] = i;
-    } else {
-      broadphase.note_move(i, x1, y1);
-    }
+    // The broadphase is noted once the block is done (note_moves).
+    const double d = broadphase.distance(i, x1, y1);
+    largest = std::max(largest, d);
+    if (d > refile) [[unlikely]]
+      far_out[far++] = i;
     if constexpr (kFindFast) {
       const double dx = std::abs(x1 - x0), dy = std::abs(y1 - y0);
       if (dx > share * box.half[0] || dy > share * box.half[1]) fast_out[count++] = i;
@@ -67,16 +64,20 @@ template <bool kFindFast, bool kKeepVelocities>
 void Motion::integrate_all(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt,
                            WorkerPool& pool) {
   const std::uint32_t dynamic_end = b.dynamic_end, movable_end = b.movable_end;
+  if (far_.size() < movable_end) far_.resize(movable_end);
   if (pool.threads() == 1 || movable_end <= kBlock) {
+    // One block: the moves are noted once it is done, as with workers. Noted body by body, the
+    // broadphase's margin was loaded and stored again for every body (the loop's stores of
+    // doubles may alias it).
     Notes notes;
-    integrate_range<true, kFindFast, kKeepVelocities, false>(b, broadphase, gravity, dt, 0,
-                                                             dynamic_end, 0, notes);
-    integrate_range<false, kFindFast, kKeepVelocities, false>(b, broadphase, gravity, dt,
-                                                              dynamic_end, movable_end, 0, notes);
+    integrate_range<true, kFindFast, kKeepVelocities>(b, broadphase, gravity, dt, 0, dynamic_end, 0,
+                                                      notes);
+    integrate_range<false, kFindFast, kKeepVelocities>(b, broadphase, gravity, dt, dynamic_end,
+                                                       movable_end, 0, notes);
     fast_count_ = notes.fast;
+    broadphase.note_moves(b, notes.largest, {far_.data(), notes.far});
     return;
   }
-  if (far_.size() < movable_end) far_.resize(movable_end);
   const std::uint32_t blocks = (movable_end + kBlock - 1) / kBlock;
   if (notes_.size() < blocks) notes_.resize(blocks);
   pool.run(blocks, [&](std::uint32_t k) {
@@ -84,10 +85,10 @@ void Motion::integrate_all(Bodies& b, Broadphase& broadphase, Vec2 gravity, doub
     Notes& notes = notes_[k];
     notes = Notes{};
     const std::uint32_t split = std::clamp(dynamic_end, begin, end);
-    integrate_range<true, kFindFast, kKeepVelocities, true>(b, broadphase, gravity, dt, begin,
-                                                            split, begin, notes);
-    integrate_range<false, kFindFast, kKeepVelocities, true>(b, broadphase, gravity, dt, split, end,
-                                                             begin, notes);
+    integrate_range<true, kFindFast, kKeepVelocities>(b, broadphase, gravity, dt, begin, split,
+                                                      begin, notes);
+    integrate_range<false, kFindFast, kKeepVelocities>(b, broadphase, gravity, dt, split, end,
+                                                       begin, notes);
   });
   // Each block's lists, moved down to follow the blocks before it: slot order, as one thread.
   double largest = 0.0;

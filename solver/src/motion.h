@@ -48,7 +48,7 @@ struct Motion {
     std::uint32_t fast = 0, far = 0;
     double largest = 0.0;
   };
-  template <bool kDynamic, bool kFindFast, bool kKeepVelocities, bool kBlocks>
+  template <bool kDynamic, bool kFindFast, bool kKeepVelocities>
   void integrate_range(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt,
                        std::uint32_t begin, std::uint32_t end, std::uint32_t out, Notes& notes);
   template <bool kFindFast, bool kKeepVelocities>
@@ -57,7 +57,7 @@ struct Motion {
 
   std::vector<std::uint32_t> fast_;  // room for every movable slot; the first fast_count_ count
   std::size_t fast_count_ = 0;
-  std::vector<std::uint32_t> far_;  // with workers: room for every movable slot
+  std::vector<std::uint32_t> far_;  // room for every movable slot
   std::vector<Notes> notes_;        // with workers: per block
 };
 

@@ -114,8 +114,8 @@ struct StepContext {
                                           : (sign > 0 ? touching::kBottom : touching::kTop);
     const std::uint8_t b_side = axis == 0 ? (sign > 0 ? touching::kRight : touching::kLeft)
                                           : (sign > 0 ? touching::kTop : touching::kBottom);
-    bodies.touching[a] |= a_side;
-    bodies.touching[b] |= b_side;
+    add_touch(bodies.touching[a], a_side);
+    add_touch(bodies.touching[b], b_side);
     if (record_links) response.add(a, b, axis, sign);
   }
 };

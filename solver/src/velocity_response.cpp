@@ -5,20 +5,10 @@
 
 namespace chain::detail {
 
-std::uint32_t VelocityResponse::Groups::find(std::uint32_t i) {
-  while (parent_[i] != i) {
-    parent_[i] = parent_[parent_[i]];  // path halving
-    i = parent_[i];
-  }
-  return i;
-}
-
 void VelocityResponse::apply(Bodies& bodies, double restitution_threshold, WorkerPool& pool) {
   if (links_.empty()) return;
   // A world at rest pushes along one axis only: the workers would wake for nothing.
-  const bool both =
-      std::any_of(links_.begin(), links_.end(), [](const Link& l) { return l.axis == 0; }) &&
-      std::any_of(links_.begin(), links_.end(), [](const Link& l) { return l.axis == 1; });
+  const bool both = per_axis_[0] > 0 && per_axis_[1] > 0;
   if (pool.threads() == 1 || !both) {
     apply_axis(bodies, 0, restitution_threshold, groups_[0]);
     apply_axis(bodies, 1, restitution_threshold, groups_[0]);
@@ -31,37 +21,58 @@ void VelocityResponse::apply(Bodies& bodies, double restitution_threshold, Worke
 
 void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_threshold,
                                   Groups& g) const {
-  auto& [parent_, root_, member_, mass_, momentum_, anchor_sum_, restitution_, spread_,
-         anchor_count_] = g;
-  auto find = [&g](std::uint32_t i) { return g.find(i); };
-  if (std::none_of(links_.begin(), links_.end(), [axis](const Link& l) { return l.axis == axis; }))
-    return;
+  if (per_axis_[axis] == 0) return;
   const std::uint32_t n = bodies.dynamic_end;
-  double* v = axis == 0 ? bodies.vx.data() : bodies.vy.data();
-  parent_.resize(n);
-  root_.resize(n);
-  member_.assign(n, 0);
-  for (auto* a : {&mass_, &momentum_, &anchor_sum_, &restitution_, &spread_})
+  for (auto* a : {&g.parent_, &g.root_, &g.anchor_count_})
     a->resize(n);
-  anchor_count_.resize(n);
+  for (auto* a : {&g.mass_, &g.momentum_, &g.anchor_sum_, &g.restitution_, &g.spread_})
+    a->resize(n);
+  // Through local pointers: the loops below store into several of these arrays, and through the
+  // vectors every store would have the others' data pointers reloaded.
+  double* const v = axis == 0 ? bodies.vx.data() : bodies.vy.data();
+  const double* const body_mass = bodies.mass.data();
+  const double* const body_restitution = bodies.restitution.data();
+  std::uint32_t* const parent = g.parent_.data();
+  std::uint32_t* const root = g.root_.data();
+  std::uint32_t* const anchor_count = g.anchor_count_.data();
+  double* const mass = g.mass_.data();
+  double* const momentum = g.momentum_.data();
+  double* const anchor_sum = g.anchor_sum_.data();
+  double* const restitution = g.restitution_.data();
+  double* const spread = g.spread_.data();
+  auto find = [parent](std::uint32_t i) {
+    while (parent[i] != i) {
+      parent[i] = parent[parent[i]];  // path halving
+      i = parent[i];
+    }
+    return i;
+  };
 
   // A link joins two bodies only while they close in or rest on each other: a pair that an
   // earlier push already set apart keeps its velocities.
   auto closing = [&](const Link& l) {
     return (v[l.a] - v[l.b]) * static_cast<double>(l.sign) <= 0.0;
   };
+  // kNoSlot: in no group. A body joins as a group of its own when a link first names it.
+  std::fill_n(parent, n, kNoSlot);
+  // The closing links to immovable bodies, in link order, for the anchors' pass: allocates only
+  // when links_ itself did.
+  std::vector<const Link*>& anchored = g.anchored_;
+  if (anchored.capacity() < links_.capacity()) anchored.reserve(links_.capacity());
+  anchored.clear();
   bool any = false;
-  for (std::uint32_t i = 0; i < n; ++i)
-    parent_[i] = i;
   for (const Link& l : links_) {
     if (l.axis != axis || !closing(l)) continue;
     any = true;
-    member_[l.a] = 1;
-    if (bodies.immovable(l.b)) continue;
-    member_[l.b] = 1;
+    if (parent[l.a] == kNoSlot) parent[l.a] = l.a;
+    if (l.b >= n) {  // immovable
+      anchored.push_back(&l);
+      continue;
+    }
+    if (parent[l.b] == kNoSlot) parent[l.b] = l.b;
     const std::uint32_t ra = find(l.a), rb = find(l.b);
     // The smaller slot becomes the root, so groups do not depend on link order.
-    if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+    if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
   }
   if (!any) return;
 
@@ -69,49 +80,57 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
   // slot, so it comes first, and its sums are cleared before any member adds to them.
   double max_restitution = 0.0;
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (!member_[i]) continue;
-    const std::uint32_t r = root_[i] = find(i);
+    if (parent[i] == kNoSlot) continue;
+    // A parent is a member of a smaller slot (unions hang the larger root under the smaller), so
+    // its root is known by now: find(i) without walking the path.
+    const std::uint32_t r = root[i] = parent[i] == i ? i : root[parent[i]];
     if (r == i) {
-      mass_[r] = momentum_[r] = anchor_sum_[r] = restitution_[r] = spread_[r] = 0.0;
-      anchor_count_[r] = 0;
+      mass[r] = momentum[r] = anchor_sum[r] = restitution[r] = spread[r] = 0.0;
+      anchor_count[r] = 0;
     }
-    mass_[r] += bodies.mass[i];
-    momentum_[r] += bodies.mass[i] * v[i];
-    restitution_[r] = std::max(restitution_[r], bodies.restitution[i]);
-    max_restitution = std::max(max_restitution, bodies.restitution[i]);
+    mass[r] += body_mass[i];
+    momentum[r] += body_mass[i] * v[i];
+    restitution[r] = std::max(restitution[r], body_restitution[i]);
+    max_restitution = std::max(max_restitution, body_restitution[i]);
   }
-  for (const Link& l : links_) {
-    if (l.axis != axis || !bodies.immovable(l.b) || !closing(l)) continue;
-    const std::uint32_t r = root_[l.a];
-    anchor_sum_[r] += v[l.b];
-    ++anchor_count_[r];
-    restitution_[r] = std::max(restitution_[r], bodies.restitution[l.b]);
-    max_restitution = std::max(max_restitution, bodies.restitution[l.b]);
+  for (const Link* const anchor : anchored) {
+    const Link& l = *anchor;
+    const std::uint32_t r = root[l.a];
+    anchor_sum[r] += v[l.b];
+    ++anchor_count[r];
+    restitution[r] = std::max(restitution[r], body_restitution[l.b]);
+    max_restitution = std::max(max_restitution, body_restitution[l.b]);
   }
-  // momentum_ becomes the group velocity: the anchors' mean (several only when a body is
+  // momentum becomes the group velocity: the anchors' mean (several only when a body is
   // crushed between them) or the mass-weighted mean.
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (!member_[i] || root_[i] != i) continue;
-    momentum_[i] = anchor_count_[i] > 0 ? anchor_sum_[i] / static_cast<double>(anchor_count_[i])
-                                        : momentum_[i] / mass_[i];
-  }
-  if (max_restitution == 0.0) {  // no group bounces: every member takes its group's velocity
+  auto group_velocity = [&](std::uint32_t r) {
+    momentum[r] = anchor_count[r] > 0 ? anchor_sum[r] / static_cast<double>(anchor_count[r])
+                                      : momentum[r] / mass[r];
+  };
+  if (max_restitution == 0.0) {
+    // No group bounces: every member takes its group's velocity, in the same pass, as a group's
+    // root (its smallest slot) comes before its other members.
     for (std::uint32_t i = 0; i < n; ++i) {
-      if (member_[i]) v[i] = momentum_[root_[i]];
+      if (parent[i] == kNoSlot) continue;
+      if (root[i] == i) group_velocity(i);
+      v[i] = momentum[root[i]];
     }
     return;
   }
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (member_[i])
-      spread_[root_[i]] = std::max(spread_[root_[i]], std::abs(v[i] - momentum_[root_[i]]));
+    if (parent[i] != kNoSlot && root[i] == i) group_velocity(i);
   }
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (!member_[i]) continue;
-    const std::uint32_t r = root_[i];
-    const double group_v = momentum_[r];
-    const double e = restitution_[r];
+    if (parent[i] != kNoSlot)
+      spread[root[i]] = std::max(spread[root[i]], std::abs(v[i] - momentum[root[i]]));
+  }
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (parent[i] == kNoSlot) continue;
+    const std::uint32_t r = root[i];
+    const double group_v = momentum[r];
+    const double e = restitution[r];
     v[i] =
-        (e > 0.0 && spread_[r] >= restitution_threshold) ? group_v - e * (v[i] - group_v) : group_v;
+        (e > 0.0 && spread[r] >= restitution_threshold) ? group_v - e * (v[i] - group_v) : group_v;
   }
 }
 

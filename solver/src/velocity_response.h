@@ -18,7 +18,10 @@ namespace chain::detail {
 
 class VelocityResponse {
  public:
-  void clear() { links_.clear(); }
+  void clear() {
+    links_.clear();
+    per_axis_[0] = per_axis_[1] = 0;
+  }
   // Sizes the link list for a body set of n, as the resolver sizes its contact lists: a step then
   // records two pushes a body without allocating.
   void reserve(std::size_t n) { links_.reserve(2 * n); }
@@ -26,6 +29,7 @@ class VelocityResponse {
   void add(std::uint32_t a, std::uint32_t b, int axis, double sign) {
     links_.push_back(
         {a, b, static_cast<std::uint8_t>(axis), sign > 0.0 ? std::int8_t{1} : std::int8_t{-1}});
+    ++per_axis_[axis];
   }
   // The axes are independent (each reads and writes its own velocity component): with workers,
   // they run at once, each in buffers of its own.
@@ -40,17 +44,18 @@ class VelocityResponse {
   const std::vector<Link>& links() const { return links_; }
 
  private:
-  // Per dynamic slot: the groups of one axis.
+  // Per dynamic slot: the groups of one axis (parent_ kNoSlot: in none).
   struct Groups {
     std::vector<std::uint32_t> parent_, root_;
-    std::vector<std::uint8_t> member_;
     std::vector<double> mass_, momentum_, anchor_sum_, restitution_, spread_;
     std::vector<std::uint32_t> anchor_count_;
-    std::uint32_t find(std::uint32_t i);
+    std::vector<const Link*> anchored_;  // this pass's closing links to immovable bodies
   };
   void apply_axis(Bodies& bodies, int axis, double restitution_threshold, Groups& g) const;
 
   std::vector<Link> links_;
+  // Links per axis: a world at rest pushes along one, and the other needs no pass over the links.
+  std::size_t per_axis_[2] = {0, 0};
   Groups groups_[2];  // one for both axes in turn, or one each when they run at once
 };
 

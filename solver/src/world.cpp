@@ -172,7 +172,7 @@ Vec2 World::velocity(BodyId id) const {
 }
 
 std::uint8_t World::touching_flags(BodyId id) const {
-  return impl_->bodies.touching[impl_->slot(id)];
+  return static_cast<std::uint8_t>(impl_->bodies.touching[impl_->slot(id)]);
 }
 
 void World::read_state(Span<const BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities) const {
@@ -241,7 +241,7 @@ void World::step(double dt) {
   w.stats = StepStats{};
   w.crush_records.clear();
   w.response.clear();
-  std::fill(w.bodies.touching.begin(), w.bodies.touching.end(), std::uint8_t{0});
+  std::fill(w.bodies.touching.begin(), w.bodies.touching.end(), detail::TouchBits{});
 
   const std::uint64_t examined = w.broadphase.examined();
   const bool modern = w.def.variant == Variant::kModern;

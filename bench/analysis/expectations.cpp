@@ -35,22 +35,42 @@ ExpectationCheck::ExpectationCheck(const Scene& scene) : scene_(scene) {
   outcomes_.resize(scene.expect.size());
   for (std::size_t k = 0; k < outcomes_.size(); ++k)
     outcomes_[k].index = k;
+  // Each entry's window of states [first, last], as counts opened and closed along the run; an
+  // at_rest entry also needs the state before its window, to measure the first step's speed.
+  const auto states = static_cast<std::size_t>(std::max(scene.steps, 0)) + 1;
+  std::vector<int> state_count(states + 1, 0), depth_count(states + 1, 0);
+  auto open = [&](std::vector<int>& count, int first, int last) {
+    first = std::max(first, 0);
+    last = std::min(last, static_cast<int>(states) - 1);
+    if (first > last) return;
+    ++count[static_cast<std::size_t>(first)];
+    --count[static_cast<std::size_t>(last) + 1];
+  };
+  for (const Expectation& e : scene.expect) {
+    const int first = e.first_state(scene.steps), last = e.last_state(scene.steps);
+    open(state_count, first, last);
+    if (e.kind == Kind::kAtRest) open(state_count, first - 1, last - 1);
+    if (e.kind == Kind::kNoOverlap) open(depth_count, first, last);
+  }
+  needs_state_.resize(states);
+  needs_depth_.resize(states);
+  long open_states = 0, open_depths = 0;
+  for (std::size_t k = 0; k < states; ++k) {
+    open_states += state_count[k];
+    open_depths += depth_count[k];
+    needs_state_[k] = open_states != 0;
+    needs_depth_[k] = open_depths != 0;
+  }
 }
 
 bool ExpectationCheck::needs_state(int k) const {
-  for (const Expectation& e : scene_.expect) {
-    const int first = e.first_state(scene_.steps), last = e.last_state(scene_.steps);
-    if (k >= first && k <= last) return true;
-    if (e.kind == Kind::kAtRest && k + 1 >= first && k + 1 <= last) return true;
-  }
-  return false;
+  return k >= 0 && static_cast<std::size_t>(k) < needs_state_.size() &&
+         needs_state_[static_cast<std::size_t>(k)] != 0;
 }
 
 bool ExpectationCheck::needs_depth(int k) const {
-  return std::any_of(scene_.expect.begin(), scene_.expect.end(), [&](const Expectation& e) {
-    return e.kind == Kind::kNoOverlap && k >= e.first_state(scene_.steps) &&
-           k <= e.last_state(scene_.steps);
-  });
+  return k >= 0 && static_cast<std::size_t>(k) < needs_depth_.size() &&
+         needs_depth_[static_cast<std::size_t>(k)] != 0;
 }
 
 // Keeps the state with the largest error, or, while every state passes, the largest value: the

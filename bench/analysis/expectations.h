@@ -9,6 +9,7 @@
 #include "metrics.h"
 #include "scene.h"
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -60,6 +61,9 @@ class ExpectationCheck {
   const Scene& scene_;
   std::vector<std::size_t> dynamic_;
   std::vector<ExpectOutcome> outcomes_;
+  // Per state 0..steps: needs_state() and needs_depth(), worked out once from the windows (a run
+  // asks every step, and a scene may state thousands of entries).
+  std::vector<std::uint8_t> needs_state_, needs_depth_;
 };
 
 }  // namespace chainbench

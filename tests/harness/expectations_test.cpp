@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 
 namespace chainbench {
 namespace {
@@ -143,6 +145,45 @@ TEST(Expectations, OffsetMovesBoundsAndCentres) {
   RunOptions options;
   options.metrics = MetricSelection::none();
   EXPECT_TRUE(run_engine(moved, parse_engine_spec("chain"), options).expect->pass);
+}
+
+// needs_state() and needs_depth(), worked out once per run, say for every state what the windows
+// do: a state in some entry's window, or just before an at_rest window (its first speed), and a
+// state in a no_overlap window.
+TEST(Expectations, StatesNeededAreThoseOfTheWindows) {
+  Scene s = slider();
+  s.steps = 40;
+  std::uint64_t seed = 3;
+  auto next = [&](int n) {
+    seed = seed * 6364136223846793005u + 1442695040888963407u;
+    return static_cast<int>((seed >> 33) % static_cast<std::uint64_t>(n));
+  };
+  for (int round = 0; round < 50; ++round) {
+    s.expect.clear();
+    for (int e = 0, n = next(4); e < n; ++e) {
+      Expectation x;
+      x.kind = std::array{Kind::kCenter, Kind::kBounds, Kind::kAtRest, Kind::kNoOverlap}[next(4)];
+      x.body = 0;
+      if (next(3) != 0) {
+        const int a = next(s.steps + 1), b = next(s.steps + 1);
+        x.from_step = std::min(a, b);
+        if (next(2) != 0) x.to_step = std::max(a, b);
+      }
+      s.expect.push_back(x);
+    }
+    const ExpectationCheck check(s);
+    for (int k = -1; k <= s.steps + 1; ++k) {
+      bool state = false, depth = false;
+      for (const Expectation& e : s.expect) {
+        const int first = e.first_state(s.steps), last = e.last_state(s.steps);
+        const bool in = k >= first && k <= last;
+        state = state || in || (e.kind == Kind::kAtRest && k + 1 >= first && k + 1 <= last);
+        depth = depth || (e.kind == Kind::kNoOverlap && in);
+      }
+      EXPECT_EQ(check.needs_state(k), state) << "round " << round << " state " << k;
+      EXPECT_EQ(check.needs_depth(k), depth) << "round " << round << " state " << k;
+    }
+  }
 }
 
 }  // namespace

@@ -97,13 +97,16 @@ void TunnelWatch::check(const BodyState& before, const BodyState& after, std::si
                  after.position[i].y - after.position[j].y};
   auto deep_crossing = [&](int axis) { return deep(i, j, r0, r1, axis); };
   const std::uint64_t pair = static_cast<std::uint64_t>(i) << 32 | static_cast<std::uint64_t>(j);
-  Inside now{pair, kNoFace, false};
-  std::int8_t exit = kNoFace;
+  // The pair's entry face and depth flag as locals, not an Inside being filled in: a struct
+  // built on the stack field by field and then read whole stalls every call on the store
+  // forwarding of its padding.
+  std::int8_t entry = kNoFace, exit = kNoFace;
+  bool deep_now = false;
   if (inside(r0, h)) {
-    if (const Inside* was = find(pair)) now = *was;
-    if (now.entry != kNoFace) now.deep = now.deep || deep_crossing(now.entry / 2);
+    if (const Inside* was = find(pair)) entry = was->entry, deep_now = was->deep;
+    if (entry != kNoFace) deep_now = deep_now || deep_crossing(entry / 2);
     if (inside(r1, h)) {
-      next_.push_back(now);
+      next_.push_back({pair, entry, deep_now});
       return;
     }
     Crossing c;
@@ -112,15 +115,15 @@ void TunnelWatch::check(const BodyState& before, const BodyState& after, std::si
   } else {
     Crossing c;
     if (!cross(r0, r1, h, c)) return;
-    now.entry = c.enter_face;
-    now.deep = deep_crossing(now.entry / 2);
+    entry = c.enter_face;
+    deep_now = deep_crossing(entry / 2);
     if (inside(r1, h)) {
-      next_.push_back(now);
+      next_.push_back({pair, entry, deep_now});
       return;
     }
     exit = c.exit_face;
   }
-  if (now.entry == kNoFace || exit != opposite(now.entry) || !now.deep) return;
+  if (entry == kNoFace || exit != opposite(entry) || !deep_now) return;
   // The relative centre left through the far face: the body that moved more went through.
   const bool i_moved = std::hypot(after.position[i].x - before.position[i].x,
                                   after.position[i].y - before.position[i].y) >=

@@ -27,6 +27,7 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
   }
   // Kept in a register: written through ctx, it would be reloaded after every store of the loop.
   std::uint32_t max_depth = ctx.stats.max_depth;
+  const OverlapTest test(tol);  // made once for every wall's walk
   // The queue's length, counted here: queue_.size() divides by the 20-byte item at every wall.
   std::size_t queued = queue_.size();
   for (std::size_t k = 0; k < queued && !state.cut; ++k) {
@@ -40,7 +41,7 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
     cands_.clear();
     // Only an immovable body other than its wall can squeeze w: most walls meet none, and skip
     // the call.
-    if (state.gather_overlaps(ctx, w, cands_)) {
+    if (state.gather_overlaps(ctx, w, cands_, test)) {
       for (const std::uint32_t d : cands_) {
         if (d != item.wall && ctx.bodies.immovable(d)) {
           crush_check(ctx, state, item);

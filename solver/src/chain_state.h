@@ -94,15 +94,17 @@ class ChainState {
     m.support_dir[axis] = static_cast<std::int8_t>(direction);
     m.support_anchor = anchor;
   }
+  // Near lists hold entries, slot * kEntryScale (box_overlap.h); entry_slot() gives the slot.
+  static std::uint32_t entry_slot(std::uint32_t entry) { return entry / kEntryScale; }
   // Where near(body) starts among all the near lists, which lie end to end in slot order.
   std::uint32_t near_offset(std::uint32_t body) const { return near_start_[body]; }
-  // The bodies that were near `body` when the near pairs were last taken.
+  // The bodies that were near `body` when the near pairs were last taken, as entries.
   std::span<const std::uint32_t> near(std::uint32_t body) const {
     return {near_.data() + near_start_[body], near_.data() + near_start_[body + 1]};
   }
-  // The same, less the bodies of higher slots: a pair is taken at its later body (gather_contacts)
-  // without reading the other half of the list. Where lower(body) starts among them all, in slot
-  // order.
+  // The same (entries too), less the bodies of higher slots: a pair is taken at its later body
+  // (gather_contacts) without reading the other half of the list. Where lower(body) starts among
+  // them all, in slot order.
   std::span<const std::uint32_t> lower(std::uint32_t body) const {
     return {lower_.data() + lower_start_[body], lower_.data() + lower_start_[body + 1]};
   }

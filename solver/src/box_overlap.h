@@ -42,8 +42,18 @@ struct OverlapTest {
 #endif
 };
 
-// fn(j), in list order, for every body j of `list` that overlaps body i by more than the
-// tolerance on both axes: the test of overlapping() in step_context.h, operand for operand.
+// Lists of bodies to test are kept as slot * kEntryScale: the offset of the body's Box in
+// doubles. The walk then finds a box at base + 8 * entry, one lea, where a slot needs a shift
+// and an add (a Box is 32 bytes, past the largest scale an x86 address takes): one of the
+// seventeen instructions every entry of every walk costs.
+inline constexpr std::uint32_t kEntryScale = 4;
+static_assert(sizeof(Bodies::Box) == kEntryScale * sizeof(double));
+// Slots up to this many fit an entry.
+inline constexpr std::uint32_t kMaxEntrySlots = 0xffffffffu / kEntryScale;
+
+// fn(j), in list order, for every body j of `list` (entries: slot * kEntryScale) that overlaps
+// body i by more than the tolerance on both axes: the test of overlapping() in step_context.h,
+// operand for operand.
 template <class Fn>
 inline void for_each_hit(const Bodies::Box* box, std::uint32_t i,
                          std::span<const std::uint32_t> list, const OverlapTest& test, Fn&& fn) {
@@ -54,17 +64,23 @@ inline void for_each_hit(const Bodies::Box* box, std::uint32_t i,
   // exactly and tests -depth < -tol, which holds exactly when depth > tol.
   const __m128d centre = _mm_loadu_pd(box[i].center), half = _mm_loadu_pd(box[i].half);
   const __m128d minus_tolerance = test.minus_tolerance, magnitude = test.magnitude;
-  for (const std::uint32_t j : list) {
-    const Bodies::Box& b = box[j];
-    const __m128d distance = _mm_and_pd(_mm_sub_pd(_mm_loadu_pd(b.center), centre), magnitude);
-    const __m128d minus_depth = _mm_sub_pd(distance, _mm_add_pd(_mm_loadu_pd(b.half), half));
-    if (_mm_movemask_pd(_mm_cmplt_pd(minus_depth, minus_tolerance)) == 3) fn(j);
+  // The boxes as bytes: an entry times 8 is the offset of its box's centre, and 16 more its half
+  // extents (Box::center, Box::half).
+  const char* const bytes = reinterpret_cast<const char*>(box);
+  for (const std::uint32_t e : list) {
+    const char* const b = bytes + std::size_t{e} * sizeof(double);
+    const __m128d b_centre = _mm_loadu_pd(reinterpret_cast<const double*>(b));
+    const __m128d b_half = _mm_loadu_pd(reinterpret_cast<const double*>(b + 2 * sizeof(double)));
+    const __m128d distance = _mm_and_pd(_mm_sub_pd(b_centre, centre), magnitude);
+    const __m128d minus_depth = _mm_sub_pd(distance, _mm_add_pd(b_half, half));
+    if (_mm_movemask_pd(_mm_cmplt_pd(minus_depth, minus_tolerance)) == 3) fn(e / kEntryScale);
   }
 #else
   const double tol = test.tolerance;
   const double x = box[i].center[0], y = box[i].center[1];
   const double hx = box[i].half[0], hy = box[i].half[1];
-  for (const std::uint32_t j : list) {
+  for (const std::uint32_t e : list) {
+    const std::uint32_t j = e / kEntryScale;
     const Bodies::Box& b = box[j];
     if ((hx + b.half[0]) - std::abs(x - b.center[0]) > tol &&
         (hy + b.half[1]) - std::abs(y - b.center[1]) > tol) {

@@ -90,7 +90,8 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
       continue;
     }
     const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
-    for (const std::uint32_t j : state_.near(i)) {
+    for (const std::uint32_t e : state_.near(i)) {
+      const std::uint32_t j = ChainState::entry_slot(e);
       if (j < i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
           (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol && !bp.stale(j)) {
         contacts_.push_back({j, i});

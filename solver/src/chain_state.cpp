@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <stdexcept>
 
 namespace chain::detail {
 
@@ -50,6 +51,7 @@ void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near
   }
   if (!near_pairs) return;
   const std::uint32_t n = bodies.size();
+  if (n > kMaxEntrySlots) throw std::length_error("chain: more bodies than near lists can hold");
   near_start_.assign(n + 2, 0);
   for (const Pair& p : *near_pairs)
     ++near_start_[p.a + 2], ++near_start_[p.b + 2];
@@ -57,8 +59,8 @@ void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near
     near_start_[i] += near_start_[i - 1];
   near_.resize(near_start_[n + 1]);
   for (const Pair& p : *near_pairs) {  // near_start_[i + 1] is the fill cursor of body i
-    near_[near_start_[p.a + 1]++] = p.b;
-    near_[near_start_[p.b + 1]++] = p.a;
+    near_[near_start_[p.a + 1]++] = p.b * kEntryScale;
+    near_[near_start_[p.b + 1]++] = p.a * kEntryScale;
   }
   // Each body's lower neighbours, in the order of its near list.
   lower_start_.resize(n + 1);
@@ -67,7 +69,7 @@ void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near
   for (std::uint32_t i = 0; i < n; ++i) {
     lower_start_[i] = fill;
     for (std::uint32_t k = near_start_[i]; k < near_start_[i + 1]; ++k) {
-      if (near_[k] < i) lower_[fill++] = near_[k];
+      if (near_[k] < i * kEntryScale) lower_[fill++] = near_[k];
     }
   }
   lower_start_[n] = fill;
@@ -107,7 +109,7 @@ void ChainState::begin_chain() {
   // Its near pairs, less the bodies filed again since, which the overlay then gives.
   const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
   for (std::uint32_t k = near_start_[around]; k < near_start_[around + 1]; ++k) {
-    const std::uint32_t j = near_[k];
+    const std::uint32_t j = entry_slot(near_[k]);
     if ((hx + b.hx(j)) - std::abs(x - b.x(j)) > tol &&
         (hy + b.hy(j)) - std::abs(y - b.y(j)) > tol && !bp.stale(j)) {
       out.push_back(j);

@@ -35,6 +35,12 @@ class ChainState {
   // the grid. True when one of them is immovable. Inline: every body a chain reaches takes it.
   template <class Out>
   bool gather_overlaps(StepContext& ctx, std::uint32_t around, Out& out) const {
+    return gather_overlaps(ctx, around, out, OverlapTest(ctx.def.touch_tolerance));
+  }
+  // The same with the test's constants made by the caller, once for many walks.
+  template <class Out>
+  bool gather_overlaps(StepContext& ctx, std::uint32_t around, Out& out,
+                       const OverlapTest& test) const {
     if (!ctx.broadphase.near_pairs_hold()) [[unlikely]]
       return gather_overlaps_refiled(ctx, around, out);
     // Every body that moved less than the broadphase's refile distance since the near pairs were
@@ -44,15 +50,14 @@ class ChainState {
     const std::uint32_t dynamic_end = ctx.bodies.dynamic_end;
     bool immovable = false;
     if constexpr (std::is_same_v<Out, SlotList>) out.room_for(list.size());
-    for_each_hit(ctx.bodies.box.data(), around, list, OverlapTest(ctx.def.touch_tolerance),
-                 [&](std::uint32_t j) {
-                   if constexpr (std::is_same_v<Out, SlotList>) {
-                     out.push(j);
-                   } else {
-                     out.push_back(j);
-                   }
-                   immovable |= j >= dynamic_end;
-                 });
+    for_each_hit(ctx.bodies.box.data(), around, list, test, [&](std::uint32_t j) {
+      if constexpr (std::is_same_v<Out, SlotList>) {
+        out.push(j);
+      } else {
+        out.push_back(j);
+      }
+      immovable |= j >= dynamic_end;
+    });
     return immovable;
   }
   // gather_overlaps once some body was filed again since the near pairs were taken.
@@ -89,15 +94,17 @@ class ChainState {
     m.support_dir[axis] = static_cast<std::int8_t>(direction);
     m.support_anchor = anchor;
   }
+  // Near lists hold entries, slot * kEntryScale (box_overlap.h); entry_slot() gives the slot.
+  static std::uint32_t entry_slot(std::uint32_t entry) { return entry / kEntryScale; }
   // Where near(body) starts among all the near lists, which lie end to end in slot order.
   std::uint32_t near_offset(std::uint32_t body) const { return near_start_[body]; }
-  // The bodies that were near `body` when the near pairs were last taken.
+  // The bodies that were near `body` when the near pairs were last taken, as entries.
   std::span<const std::uint32_t> near(std::uint32_t body) const {
     return {near_.data() + near_start_[body], near_.data() + near_start_[body + 1]};
   }
-  // The same, less the bodies of higher slots: a pair is taken at its later body (gather_contacts)
-  // without reading the other half of the list. Where lower(body) starts among them all, in slot
-  // order.
+  // The same (entries too), less the bodies of higher slots: a pair is taken at its later body
+  // (gather_contacts) without reading the other half of the list. Where lower(body) starts among
+  // them all, in slot order.
   std::span<const std::uint32_t> lower(std::uint32_t body) const {
     return {lower_.data() + lower_start_[body], lower_.data() + lower_start_[body + 1]};
   }

@@ -27,7 +27,10 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
   }
   // Kept in a register: written through ctx, it would be reloaded after every store of the loop.
   std::uint32_t max_depth = ctx.stats.max_depth;
-  for (std::size_t k = 0; k < queue_.size() && !state.cut; ++k) {
+  const OverlapTest test(tol);  // made once for every wall's walk
+  // The queue's length, counted here: queue_.size() divides by the 20-byte item at every wall.
+  std::size_t queued = queue_.size();
+  for (std::size_t k = 0; k < queued && !state.cut; ++k) {
     const Item item = queue_[k];
     const std::uint32_t w = item.body;
     if (rows_ && state.crushed(w)) continue;  // placed with its crushed row: nothing to push
@@ -38,7 +41,7 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
     cands_.clear();
     // Only an immovable body other than its wall can squeeze w: most walls meet none, and skip
     // the call.
-    if (state.gather_overlaps(ctx, w, cands_)) {
+    if (state.gather_overlaps(ctx, w, cands_, test)) {
       for (const std::uint32_t d : cands_) {
         if (d != item.wall && ctx.bodies.immovable(d)) {
           crush_check(ctx, state, item);
@@ -100,6 +103,7 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
       against_[c] = w;
       queue_.push_back(
           {c, w, item.depth + 1, item.anchor, item.axis, static_cast<std::int8_t>(-dir)});
+      ++queued;
     }
   }
   ctx.stats.max_depth = max_depth;

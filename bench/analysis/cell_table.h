@@ -11,7 +11,7 @@
 // of pairs already seen.
 //
 // The table owns its buffers and refills them in place: once warmed up to a scene's size, a
-// rebuild allocates nothing (PairScan rebuilds every step).
+// rebuild allocates nothing (PairScan rebuilds at every filing of a PairCache).
 #pragma once
 
 #include <algorithm>

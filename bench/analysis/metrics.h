@@ -114,12 +114,16 @@ class MetricsRecorder {
   // The same from `changed` and the bodies the last step left with a velocity (still_).
   bool find_moved(const BodyState& before, const BodyState& after,
                   const std::vector<std::uint32_t>& changed);
-  // Whether body i moved in the step, or was left with a velocity (a NaN counts as a move).
+  // Whether body i moved in the step, or was left with a velocity or a position that is not finite
+  // (whose displacement a full pass finds to be NaN every step).
   bool moved(std::size_t i, const BodyState& before, const BodyState& after) const {
     return (after.position[i].x != before.position[i].x) |
            (after.position[i].y != before.position[i].y) |
-           (scan_.rotated() && after.angle[i] != before.angle[i]) | (after.velocity[i].x != 0.0) |
-           (after.velocity[i].y != 0.0);
+           (scan_.rotated() && after.angle[i] != before.angle[i]) | keeps_moving(i, after);
+  }
+  static bool keeps_moving(std::size_t i, const BodyState& s) {
+    return (s.velocity[i].x != 0.0) | (s.velocity[i].y != 0.0) | !std::isfinite(s.position[i].x) |
+           !std::isfinite(s.position[i].y);
   }
   void observe_all(const BodyState& before, const BodyState& after, int step, bool displacement,
                    bool overlaps);
@@ -141,7 +145,7 @@ class MetricsRecorder {
   MotionBounds bounds_;
   std::vector<std::size_t> dynamic_;
   PairScan scan_;
-  PairCache cache_;  // the pairs of a step in which most bodies moved
+  PairCache cache_;  // the pairs of every step but those of scan_every_body()
   TunnelWatch tunnels_;
   std::vector<double> step_efd_, step_pen_;
   std::vector<double> slack_;  // per body: what is left of its allowance, m
@@ -149,7 +153,7 @@ class MetricsRecorder {
   // moved, the only ones whose bucket a step changes.
   std::vector<std::size_t> recovering_, merged_;
   std::vector<std::uint32_t> moved_;  // ascending
-  // The bodies with a velocity after the last step observed, ascending: with the bodies whose
+  // The bodies that keep_moving() after the last step observed, ascending: with the bodies whose
   // state changed, the only ones a step can find moved.
   std::vector<std::uint32_t> still_, candidates_;
   std::vector<std::uint8_t> active_;  // per body: in moved_ (set while a step is observed)

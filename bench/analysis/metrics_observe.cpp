@@ -63,7 +63,7 @@ void MetricsRecorder::observe(const BodyState& before, const BodyState& after, i
     }
     std::size_t kept = 0;
     for (const std::uint32_t i : moved_) {
-      if (after.velocity[i].x != 0.0 || after.velocity[i].y != 0.0) moved_[kept++] = i;
+      if (keeps_moving(i, after)) moved_[kept++] = i;
     }
     moved_.resize(kept);
     still_.swap(moved_);
@@ -71,8 +71,7 @@ void MetricsRecorder::observe(const BodyState& before, const BodyState& after, i
     observe_all(before, after, step, displacement, overlaps);
     still_.clear();
     for (std::size_t i = 0; i < after.velocity.size(); ++i) {
-      if (after.velocity[i].x != 0.0 || after.velocity[i].y != 0.0)
-        still_.push_back(static_cast<std::uint32_t>(i));
+      if (keeps_moving(i, after)) still_.push_back(static_cast<std::uint32_t>(i));
     }
   }
   last_step_ = step;
@@ -103,8 +102,8 @@ bool MetricsRecorder::find_moved(const BodyState& before, const BodyState& after
 
 bool MetricsRecorder::find_moved(const BodyState& before, const BodyState& after,
                                  const std::vector<std::uint32_t>& changed) {
-  // A body whose state did not change moved only if it has a velocity, which it then had after
-  // the last step too.
+  // A body whose state did not change moved only if it keeps moving, which it then did after the
+  // last step too.
   const std::size_t most = after.position.size() / 2;
   if (changed.size() > most) return false;  // a full pass, which gives the same figures
   candidates_.clear();

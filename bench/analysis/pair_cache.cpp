@@ -14,6 +14,7 @@ PairCache::PairCache(const Scene& scene) : scan_(scene) {
   filed_placed_.assign(n, 0);
   loose_.assign(n, 0);
   refitting_.assign(n, 0);
+  giant_.assign(n, 0);
 }
 
 PairCache::Box PairCache::fatten(std::size_t i, const BodyState& before,
@@ -47,6 +48,9 @@ bool PairCache::measure_all(std::span<const std::uint32_t> bodies, const BodySta
   if (refit_.empty()) return true;
   if (loose_list_.size() + refit_.size() > std::max<std::size_t>(16, box_.size() / 64))
     return false;
+  for (const std::uint32_t i : refit_) {  // a giant's pairs are found by filing, never listed
+    if (placed_[i] && scan_.giant(fatten(i, before, after))) return false;
+  }
   refit(before, after);
   return true;
 }
@@ -85,9 +89,12 @@ void PairCache::file(const BodyState& before, const BodyState& after) {
   filed_placed_ = placed_;
   scan_.build(fat_, placed_);
   pairs_.clear();
-  scan_.for_each_pair([&](std::size_t i, std::size_t j) {
-    pairs_.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
-  });
+  scan_.for_each_pair_in_grid([&](std::uint32_t i, std::uint32_t j) { pairs_.emplace_back(i, j); });
+  for (const std::uint32_t g : giants_)
+    giant_[g] = 0;
+  giants_.assign(scan_.giants().begin(), scan_.giants().end());
+  for (const std::uint32_t g : giants_)
+    giant_[g] = 1;
   adj_start_.assign(box_.size() + 1, 0);
   for (const auto& [i, j] : pairs_)
     ++adj_start_[i + 1], ++adj_start_[j + 1];

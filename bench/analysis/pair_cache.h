@@ -1,5 +1,5 @@
-// The pairs of bodies whose swept boxes touch, for the steps in which many bodies move, found
-// without building a grid every step.
+// The pairs of bodies whose swept boxes touch, for the steps in which bodies move, found without
+// building a grid every step.
 //
 // Each body is filed with a fat box: its swept box grown by a margin, and by twice the distance
 // it moved in that step along each axis, so that a body keeping its pace stays inside it for a few
@@ -8,7 +8,12 @@
 // listed pairs only. A body that leaves its fat box (or whose position turns finite or not) is
 // given a new one and becomes loose: its pairs are found again, against the fat boxes in the grid
 // of the last filing and those of the other loose bodies, and kept on a list of their own. When
-// more than a sixty-fourth of the bodies are loose, every body is filed again.
+// more than a sixty-fourth of the bodies (and at least 16) would be loose, or a body's new fat
+// box would be a giant, every body is filed again.
+//
+// A fat box too big for the grid (a body thrown far in one step) is a giant: its pairs are not
+// listed, which would hold one pair per body for every giant, but tested against every body
+// each step, as PairScan does.
 //
 // Where only some bodies moved, the pairs with a moved body are read from each moved body's own
 // list, and only the moved bodies are measured: a body at rest is still inside its fat box, since
@@ -50,6 +55,8 @@ class PairCache {
   // body was given a new fat box.
   std::uint64_t filings() const { return filings_; }
   std::uint64_t refits() const { return refits_; }
+  // Pairs held on the lists now (giants' pairs are never held).
+  std::size_t listed() const { return pairs_.size() + loose_pairs_.size(); }
 
  private:
   using Box = CellTable::Box;
@@ -85,9 +92,12 @@ class PairCache {
   // Per body: both positions of the step finite (its pairs are reported), its position after the
   // step finite (it is filed), and that as it was when filed.
   std::vector<std::uint8_t> live_, placed_, filed_placed_;
-  std::vector<Pair> pairs_;  // whose fat boxes touched when filed
+  std::vector<Pair> pairs_;  // whose fat boxes touched when filed, giants' left out
   // Per body, its partners on that list: adj_[adj_start_[i] .. adj_start_[i + 1]).
-  std::vector<std::uint32_t> adj_start_, adj_;
+  std::vector<std::size_t> adj_start_;
+  std::vector<std::uint32_t> adj_;
+  std::vector<std::uint32_t> giants_;  // bodies whose fat box was a giant when filed
+  std::vector<std::uint8_t> giant_;    // per body: in giants_
   // Bodies given a new fat box since the filing, and the pairs with one of them whose fat boxes
   // touch: pairs_ and adj_ hold stale pairs of theirs, which are skipped.
   std::vector<std::uint8_t> loose_;
@@ -111,6 +121,15 @@ void PairCache::for_each_pair(const BodyState& before, const BodyState& after, F
   }
   for (const Pair& p : loose_pairs_)
     report(p);
+  // A giant against every body that is not loose (a loose body's pairs with it are listed), each
+  // pair of two giants from the lower.
+  for (const std::uint32_t g : giants_) {
+    if (loose_[g]) continue;
+    for (std::uint32_t j = 0; j < box_.size(); ++j) {
+      if (j == g || loose_[j] || (giant_[j] && j < g)) continue;
+      if (scan_.dynamic(g) || scan_.dynamic(j)) report({std::min(g, j), std::max(g, j)});
+    }
+  }
 }
 
 template <class Fn>
@@ -124,9 +143,23 @@ void PairCache::for_each_pair_of(const BodyState& before, const BodyState& after
   // A body at rest is read where it stands, and counts if its position is finite.
   auto box = [&](std::uint32_t i) { return active[i] ? box_[i] : scan_.at_rest(i, after); };
   auto counts = [&](std::uint32_t i) { return active[i] ? live_[i] != 0 : placed_[i] != 0; };
+  auto meet = [&](std::uint32_t m, std::uint32_t j) {
+    if (CellTable::touch(box_[m], box(j)) && (scan_.dynamic(m) || scan_.dynamic(j)))
+      fn(static_cast<std::size_t>(std::min(m, j)), static_cast<std::size_t>(std::max(m, j)));
+  };
   for (const std::uint32_t m : moved) {
     if (!live_[m] || loose_[m]) continue;
-    for (std::uint32_t k = adj_start_[m]; k < adj_start_[m + 1]; ++k) {
+    if (giant_[m]) {  // against every body that is not loose; two moved giants from the lower
+      for (std::uint32_t j = 0; j < box_.size(); ++j) {
+        if (j == m || loose_[j] || (active[j] && giant_[j] && j < m) || !counts(j)) continue;
+        meet(m, j);
+      }
+      continue;
+    }
+    for (const std::uint32_t g : giants_) {  // a moved giant meets m itself
+      if (!loose_[g] && !active[g] && counts(g)) meet(m, g);
+    }
+    for (std::size_t k = adj_start_[m]; k < adj_start_[m + 1]; ++k) {
       const std::uint32_t j = adj_[k];
       if (loose_[j] || (active[j] && j < m) || !counts(j)) continue;  // elsewhere, or met from j
       if (CellTable::touch(box_[m], box(j)))

@@ -38,6 +38,16 @@ class PairScan {
   template <class Fn>
   void for_each_pair(Fn&& fn) const;
 
+  // fn(i, j), i < j, for the pairs for_each_pair() finds in the grid: those of two boxes that
+  // are not giants.
+  template <class Fn>
+  void for_each_pair_in_grid(Fn&& fn) const {
+    table_.for_each_pair([&](std::uint32_t i, std::uint32_t j) { report(i, j, fn); });
+  }
+  // The held boxes too big for the grid, which for_each_pair() tests against every other box.
+  std::span<const std::uint32_t> giants() const { return giants_; }
+  // Whether a box covers more cells than the grid holds a box in (it would be a giant).
+  bool giant(const Box& b) const { return table_.cover(b).count() > CellTable::kMaxCells; }
   // fn(j) once for every body j held whose box overlaps or touches `q`; call after build().
   template <class Fn>
   void for_each_held(const Box& q, Fn&& fn) const;

@@ -190,6 +190,39 @@ TEST(MetricsShortcuts, GiveTheFiguresOfAFullScanWithTurnedBoxes) {
     run_and_compare(true, seed);
 }
 
+// A body thrown to infinity and left there changes nothing step to step, yet a full pass finds its
+// displacement NaN every step (inf - inf): told which bodies changed, the recorder finds the same.
+TEST(MetricsShortcuts, ABodyHeldAtInfinityIsJudgedAsAFullScanJudgesIt) {
+  std::mt19937 rng(9);
+  const Scene s = random_scene(rng, false);
+  MetricsRecorder fast(s, MetricSelection{}), full(s, MetricSelection{});
+  full.scan_every_body();
+  BodyState at = initial_state(s);
+  const std::size_t thrown = 40;
+  for (int step = 1; step <= 12; ++step) {
+    BodyState next = at;
+    if (step == 3) next.position[thrown].x = HUGE_VAL;
+    next.position[50].x += step % 2 == 0 ? 0.01 : 0.0;  // one other body moves now and then
+    std::vector<std::uint32_t> changed;
+    for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+      if (next.position[i].x != at.position[i].x || next.position[i].y != at.position[i].y)
+        changed.push_back(static_cast<std::uint32_t>(i));
+    }
+    fast.observe(at, next, step, true, false, &changed);
+    full.observe(at, next, step, true);
+    const auto a = fast.step_displacement(), b = full.step_displacement();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      EXPECT_TRUE(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i])))
+          << "step " << step << " body " << i << ": " << a[i] << " against " << b[i];
+    }
+    at = next;
+  }
+  const Metrics a = fast.result(at), b = full.result(at);
+  EXPECT_TRUE(std::isnan(*a.efd_total) && std::isnan(*b.efd_total));
+  EXPECT_EQ(*a.finite, *b.finite);
+  EXPECT_EQ(*a.max_penetration, *b.max_penetration);
+}
+
 TEST(MetricsShortcuts, TouchingBoxesDoNotOverlapAndImmovablePairsAreLeftOut) {
   Scene s;
   s.gravity = {0.0, 0.0};

@@ -68,7 +68,6 @@ MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
       scene_(scene),
       dt_(scene.dt),
       bounds_(motion_bounds(scene)),
-      scan_(scene),
       cache_(scene),
       tunnels_(scene) {
   const std::size_t n = scene.bodies.size();
@@ -82,7 +81,10 @@ MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
   active_.assign(n, 0);
   recovering_.reserve(dynamic_.size());
   merged_.reserve(dynamic_.size());
-  moved_.reserve(n / 4 + 1);
+  // Up to every body each (moved_ and still_ trade buffers), so that no step grows them.
+  moved_.reserve(n);
+  still_.reserve(n);
+  candidates_.reserve(n);
   efd_written_.reserve(dynamic_.size());
 }
 

@@ -89,7 +89,10 @@ class MetricsRecorder {
   void observe(const BodyState& before, const BodyState& after, int step, bool per_body,
                bool depth = false, const std::vector<std::uint32_t>* changed = nullptr);
   // Every step from now on scans every body: the check the shortcuts are tested against.
-  void scan_every_body() { every_body_ = true; }
+  void scan_every_body() {
+    every_body_ = true;
+    full_scan_.emplace(scene_);
+  }
   // The metrics of the run that ended in `last`.
   Metrics result(const BodyState& last) const;
   std::span<const double> step_displacement() const { return step_efd_; }
@@ -119,7 +122,7 @@ class MetricsRecorder {
   bool moved(std::size_t i, const BodyState& before, const BodyState& after) const {
     return (after.position[i].x != before.position[i].x) |
            (after.position[i].y != before.position[i].y) |
-           (scan_.rotated() && after.angle[i] != before.angle[i]) | keeps_moving(i, after);
+           (scan().rotated() && after.angle[i] != before.angle[i]) | keeps_moving(i, after);
   }
   static bool keeps_moving(std::size_t i, const BodyState& s) {
     return (s.velocity[i].x != 0.0) | (s.velocity[i].y != 0.0) | !std::isfinite(s.position[i].x) |
@@ -144,8 +147,10 @@ class MetricsRecorder {
   double dt_;
   MotionBounds bounds_;
   std::vector<std::size_t> dynamic_;
-  PairScan scan_;
-  PairCache cache_;  // the pairs of every step but those of scan_every_body()
+  PairCache cache_;                    // the pairs of every step but those of scan_every_body()
+  std::optional<PairScan> full_scan_;  // scan_every_body()'s
+  // The boxes' sizes and kinds, and the overlap of two of them.
+  const PairScan& scan() const { return cache_.scan(); }
   TunnelWatch tunnels_;
   std::vector<double> step_efd_, step_pen_;
   std::vector<double> slack_;  // per body: what is left of its allowance, m

@@ -147,8 +147,8 @@ void MetricsRecorder::observe_all(const BodyState& before, const BodyState& afte
     std::fill(step_pen_.begin(), step_pen_.end(), 0.0);
     auto judge = [&](std::size_t i, std::size_t j) { visit(before, after, i, j, step); };
     if (every_body_) {
-      scan_.build(before, after);
-      scan_.for_each_pair(judge);
+      full_scan_->build(before, after);
+      full_scan_->for_each_pair(judge);
       cache_.invalidate();
     } else {
       cache_.for_each_pair(before, after, judge);
@@ -175,7 +175,7 @@ void MetricsRecorder::observe_some(const BodyState& before, const BodyState& aft
     clear_displacements();
     // Scene order, as a full pass sums them; a body that did not move adds exactly 0.
     for (const std::uint32_t i : moved_) {
-      if (!scan_.dynamic(i)) continue;
+      if (!scan().dynamic(i)) continue;
       const double d = energy_free_displacement(before, after, i, dt_);
       step_efd_[i] = d;
       efd_total_ += d;
@@ -206,7 +206,7 @@ void MetricsRecorder::observe_some(const BodyState& before, const BodyState& aft
     merged_.clear();
     auto r = recovering_.begin();
     for (const std::uint32_t i : moved_) {
-      if (!scan_.dynamic(i)) continue;
+      if (!scan().dynamic(i)) continue;
       for (; r != recovering_.end() && *r < i; ++r)
         merged_.push_back(*r);
       if (r != recovering_.end() && *r == i) ++r;
@@ -256,8 +256,8 @@ void MetricsRecorder::observe_still(const BodyState& after, int step, bool displ
 void MetricsRecorder::visit(const BodyState& before, const BodyState& after, std::size_t i,
                             std::size_t j, int step) {
   if (sel_.stability) tunnels_.check(before, after, i, j, step);
-  const double d = scan_.depth(after, i, j);
-  const Vec2d hi = scan_.half(i), hj = scan_.half(j);
+  const double d = scan().depth(after, i, j);
+  const Vec2d hi = scan().half(i), hj = scan().half(j);
   const double scale = std::max(
       {magnitude(after.position[i]), magnitude(after.position[j]), hi.x + hj.x, hi.y + hj.y});
   if (d <= 0.0 || below_resolution(d, scale)) return;

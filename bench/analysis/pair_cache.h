@@ -55,6 +55,9 @@ class PairCache {
   // body was given a new fat box.
   std::uint64_t filings() const { return filings_; }
   std::uint64_t refits() const { return refits_; }
+  // The scan the fat boxes are filed in, whose per-body constants (PairScan::depth, half,
+  // dynamic, rotated) are the scene's: callers judge pairs with it instead of a scan of their own.
+  const PairScan& scan() const { return scan_; }
   // Pairs held on the lists now (giants' pairs are never held).
   std::size_t listed() const { return pairs_.size() + loose_pairs_.size(); }
 

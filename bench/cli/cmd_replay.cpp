@@ -1,6 +1,7 @@
 // chainbench replay: one scene in several engines, written as a page that plays them
 // (replay_page.h); `run --replay FILE` writes the same page beside run's other outputs.
 #include "commands.h"
+#include "value_checks.h"
 #include "engine_choice.h"
 #include "input_error.h"
 #include "registry.h"
@@ -27,12 +28,12 @@ void add_replay_command(CLI::App& app, int* status) {
                 "engine the chart measures the others from, or none; default: " +
                     default_reference().label());
   r->add_option("--steps", args->steps, "steps to run instead of the scene's")
-      ->check(CLI::Range(1, 10'000'000));
+      ->check(whole_number_in(1, 10'000'000));
   r->add_option("--out", args->replay, "the page to write (HTML)")->required();
   r->add_option("--max-mb", args->replay_mb,
                 "size limit: beyond it only one step in k keeps its positions")
       ->capture_default_str()
-      ->check(CLI::Range(0.1, 10000.0));
+      ->check(number_in(0.1, 10000.0));
   r->footer(
       "The page needs nothing beside it: open it in a browser, mail it, attach it to a bug "
       "report. Exit status: 0 written; 2 bad input or usage; 1 the page could not be written in "

@@ -1,5 +1,6 @@
 // chainbench run: one scene in several engines, side by side.
 #include "commands.h"
+#include "value_checks.h"
 #include "engine_choice.h"
 #include "input_error.h"
 #include "output_file.h"
@@ -171,7 +172,7 @@ void add_run_command(CLI::App& app, int* status) {
       "--reference", args->reference,
       "engine the others are compared with, or none; default: " + default_reference().label());
   run_app->add_option("--steps", args->steps, "steps to run instead of the scene's")
-      ->check(CLI::Range(1, 10'000'000));
+      ->check(whole_number_in(1, 10'000'000));
   run_app->add_option("--json", args->json, "write the chainbench.run/1 JSON here");
   run_app->add_option("--csv", args->csv, "write one CSV row per engine here");
   run_app->add_option("--trace", args->trace,
@@ -180,7 +181,7 @@ void add_run_command(CLI::App& app, int* status) {
                       "write a page that plays every engine's run here (HTML, self-contained)");
   run_app->add_option("--replay-mb", args->replay_mb, "the replay page's size limit, MB")
       ->capture_default_str()
-      ->check(CLI::Range(0.1, 10000.0));
+      ->check(number_in(0.1, 10000.0));
   run_app
       ->add_option("--metrics", args->metrics,
                    "all, none, or a comma list of displacement, penetration, stability")

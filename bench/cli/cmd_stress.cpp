@@ -1,5 +1,6 @@
 // chainbench stress: the stiff and extreme cases, in every engine, with verdicts.
 #include "commands.h"
+#include "value_checks.h"
 #include "engine_choice.h"
 #include "input_error.h"
 #include "output_file.h"
@@ -133,7 +134,7 @@ void add_stress_command(CLI::App& app, int* status) {
                 "run only the cases whose label contains one of these |-separated texts");
   s->add_option("--timeout", args->timeout, "seconds a case may take before it counts as a hang")
       ->capture_default_str()
-      ->check(CLI::Range(1.0, 86400.0));
+      ->check(number_in(1.0, 86400.0));
   s->add_option("--json", args->json, "write the chainbench.stress/1 JSON here");
   s->add_option("--shard", args->shard,
                 "K/N: run the K-th of N parts of the matrix (runs K, K+N, ...); chainbench merge "

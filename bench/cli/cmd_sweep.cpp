@@ -1,5 +1,6 @@
 // chainbench sweep: error against run time over a grid of engine settings.
 #include "commands.h"
+#include "value_checks.h"
 #include "input_error.h"
 #include "output_file.h"
 #include "progress.h"
@@ -159,7 +160,7 @@ void add_sweep_command(CLI::App& app, int* status) {
       "default: " +
           accurate_reference().label());
   sweep_app->add_option("--steps", args->steps, "steps to run instead of each scene's")
-      ->check(CLI::Range(1, 10'000'000));
+      ->check(whole_number_in(1, 10'000'000));
   sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here");
   sweep_app->add_option("--csv", args->csv, "write one CSV row per point here");
   sweep_app->add_option("--shard", args->shard,

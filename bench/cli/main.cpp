@@ -25,6 +25,10 @@ int main(int argc, char** argv) {
   chainbench::add_stress_command(app, &status);
   chainbench::add_replay_command(app, &status);
   chainbench::add_merge_command(app, &status);
+  // Every message of ours starts with the command's name; so do CLI11's.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("chainbench: ") + e.what() + "\n(--help, or COMMAND --help, says more)\n";
+  });
   // CLI11 would say only that a subcommand is required: name the word it did not know.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;

@@ -164,7 +164,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"run --scene stack --set n=5 --set n=6", "--set n: given twice"},
         BadCall{"run --scene stack --set steps=5 --steps 6", "--steps sets it too"},
         BadCall{"sweep --scene stack --shard 1/2", "give --json FILE"},
-        BadCall{"stress --quick --shard 1/2", "give --json FILE"}),
+        BadCall{"stress --quick --shard 1/2", "give --json FILE"},
+        BadCall{"run --scene stack --steps abc",
+                "chainbench: --steps: \"abc\" is not a whole number"},
+        BadCall{"sweep --scene stack --steps 1.5", "--steps: \"1.5\" is not a whole number"},
+        BadCall{"run --scene stack --steps 0", "--steps: 0 is outside [1, 10000000]"},
+        BadCall{"run --scene stack --replay-mb x", "--replay-mb: \"x\" is not a number"},
+        BadCall{"stress --timeout nan", "--timeout: nan is outside [1, 86400]"},
+        BadCall{"run --scene stack --bogus",
+                "chainbench: The following argument was not expected"}),
     [](const auto& info) { return "Case" + std::to_string(info.index); });
 
 TEST_P(RefusedCall, ExitsWithStatusTwoAndSaysWhy) {

@@ -1,0 +1,52 @@
+// Checks of numeric option values whose messages say what is wrong: CLI11's own Range reports a
+// value that is not a number at all as "not in range".
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <string>
+#include <system_error>
+
+namespace chainbench {
+
+// A whole number in [lo, hi].
+inline CLI::Validator whole_number_in(std::int64_t lo, std::int64_t hi) {
+  const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) -> std::string {
+        std::int64_t v = 0;
+        const char* end = text.data() + text.size();
+        const auto [at, ec] = std::from_chars(text.data(), end, v);
+        if (text.empty() || at != end || ec == std::errc::invalid_argument)
+          return "\"" + text + "\" is not a whole number";
+        if (ec == std::errc::result_out_of_range || v < lo || v > hi)
+          return text + " is outside " + range;
+        return {};
+      },
+      range);
+}
+
+// A finite number in [lo, hi].
+inline CLI::Validator number_in(double lo, double hi) {
+  std::ostringstream r;
+  r << "[" << lo << ", " << hi << "]";
+  const std::string range = r.str();
+  return CLI::Validator(
+      [lo, hi, range](std::string& text) -> std::string {
+        double v = 0.0;
+        const char* end = text.data() + text.size();
+        const auto [at, ec] = std::from_chars(text.data(), end, v);
+        if (text.empty() || at != end || ec == std::errc::invalid_argument)
+          return "\"" + text + "\" is not a number";
+        if (ec == std::errc::result_out_of_range || !std::isfinite(v) || v < lo || v > hi)
+          return text + " is outside " + range;
+        return {};
+      },
+      range);
+}
+
+}  // namespace chainbench

@@ -113,6 +113,11 @@ void TunnelWatch::check(const BodyState& before, const BodyState& after, std::si
     if (!cross(r0, r1, h, c)) return;
     exit = c.exit_face;
   } else {
+    // A segment whose bounding box misses the open box never enters it, as cross() would find
+    // with four divisions: most pairs judged are neighbours resting face to face, or apart.
+    if (std::min(r0.x, r1.x) >= h.x || std::max(r0.x, r1.x) <= -h.x ||
+        std::min(r0.y, r1.y) >= h.y || std::max(r0.y, r1.y) <= -h.y)
+      return;
     Crossing c;
     if (!cross(r0, r1, h, c)) return;
     entry = c.enter_face;

@@ -1,0 +1,53 @@
+#include "pair_judging.h"
+
+#include "metrics.h"
+#include "registry.h"
+
+#include <utility>
+
+namespace chainbench {
+
+PairJudging::PairJudging(const Scene& scene, const EngineSpec& spec, int warmup, int window)
+    : scan_(scene), tunnels_(scene), first_step_(warmup + 1) {
+  const auto engine = make_engine(spec, scene);
+  int step = 0;
+  for (; step < warmup; ++step)
+    engine->step(step);
+  BodyState before = initial_state(scene), after = before;
+  engine->read_state(after);
+  pairs_.resize(static_cast<std::size_t>(window));
+  std::vector<std::uint8_t> moved(scene.bodies.size());
+  for (auto& pairs : pairs_) {
+    std::swap(before, after);
+    engine->step(step++);
+    engine->read_state(after);
+    for (std::size_t i = 0; i < moved.size(); ++i) {
+      moved[i] = after.position[i].x != before.position[i].x ||
+                 after.position[i].y != before.position[i].y;
+    }
+    scan_.build(before, after);
+    scan_.for_each_pair([&](std::size_t i, std::size_t j) {
+      if (moved[i] || moved[j])
+        pairs.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
+    });
+  }
+}
+
+double PairJudging::judge(int k, const BodyState& before, const BodyState& after) {
+  double depths = 0.0;
+  for (const auto& [i, j] : pairs_[static_cast<std::size_t>(k)]) {
+    tunnels_.check(before, after, i, j, first_step_ + k);
+    depths += scan_.depth(after, i, j);
+  }
+  tunnels_.end_step();
+  return depths;
+}
+
+double PairJudging::pairs_per_step() const {
+  double total = 0.0;
+  for (const auto& p : pairs_)
+    total += static_cast<double>(p.size());
+  return pairs_.empty() ? 0.0 : total / static_cast<double>(pairs_.size());
+}
+
+}  // namespace chainbench

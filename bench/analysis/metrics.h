@@ -139,6 +139,8 @@ class MetricsRecorder {
   // The step's deepest overlap and each body's deepest, from fresh_.
   void settle(int step);
   void clear_displacements();
+  // Body i's energy-free displacement over the step, added to the run's figures and step_efd_.
+  double add_displacement(const BodyState& before, const BodyState& after, std::size_t i);
   // Body i's finiteness, speed and blow-up bucket over the step from `before` to `after`.
   void update_slack(const BodyState& before, const BodyState& after, std::size_t i, int step);
 

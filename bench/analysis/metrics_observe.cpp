@@ -118,6 +118,15 @@ bool MetricsRecorder::find_moved(const BodyState& before, const BodyState& after
   return true;
 }
 
+double MetricsRecorder::add_displacement(const BodyState& before, const BodyState& after,
+                                         std::size_t i) {
+  const double d = energy_free_displacement(before, after, i, dt_);
+  step_efd_[i] = d;
+  efd_total_ += d;
+  efd_max_ = std::max(efd_max_, d);
+  return d;
+}
+
 void MetricsRecorder::clear_displacements() {
   if (efd_dense_) {
     std::fill(step_efd_.begin(), step_efd_.end(), 0.0);
@@ -132,12 +141,8 @@ void MetricsRecorder::clear_displacements() {
 void MetricsRecorder::observe_all(const BodyState& before, const BodyState& after, int step,
                                   bool displacement, bool overlaps) {
   if (displacement) {
-    for (const std::size_t i : dynamic_) {
-      const double d = energy_free_displacement(before, after, i, dt_);
-      step_efd_[i] = d;
-      efd_total_ += d;
-      efd_max_ = std::max(efd_max_, d);
-    }
+    for (const std::size_t i : dynamic_)
+      add_displacement(before, after, i);
     body_steps_ += dynamic_.size();
     efd_dense_ = true;
     efd_written_.clear();
@@ -175,12 +180,7 @@ void MetricsRecorder::observe_some(const BodyState& before, const BodyState& aft
     clear_displacements();
     // Scene order, as a full pass sums them; a body that did not move adds exactly 0.
     for (const std::uint32_t i : moved_) {
-      if (!scan().dynamic(i)) continue;
-      const double d = energy_free_displacement(before, after, i, dt_);
-      step_efd_[i] = d;
-      efd_total_ += d;
-      efd_max_ = std::max(efd_max_, d);
-      if (d != 0.0) efd_written_.push_back(i);
+      if (scan().dynamic(i) && add_displacement(before, after, i) != 0.0) efd_written_.push_back(i);
     }
     body_steps_ += dynamic_.size();
   }

@@ -57,7 +57,7 @@ class CellTable {
   void add(std::uint32_t index, const Cells& c) {
     for (std::int64_t cy = c.y0; cy <= c.y1; ++cy) {
       for (std::int64_t cx = c.x0; cx <= c.x1; ++cx)
-        entries_.push_back({index, cx, cy});
+        entries_.push_back({index, corner_flags(c, cx, cy), cx, cy});
     }
   }
   void sort(std::span<const Box> boxes);
@@ -72,8 +72,16 @@ class CellTable {
   void for_each_pair(Fn&& fn) const;
 
  private:
+  // Of a box covering the cells `c`, where cell (cx, cy) lies: kFirstColumn when in the first
+  // column it covers, kFirstRow in the first row.
+  static constexpr std::uint8_t kFirstColumn = 1, kFirstRow = 2;
+  static std::uint8_t corner_flags(const Cells& c, std::int64_t cx, std::int64_t cy) {
+    return static_cast<std::uint8_t>((cx == c.x0 ? kFirstColumn : 0) |
+                                     (cy == c.y0 ? kFirstRow : 0));
+  }
   struct Entry {
     std::uint32_t index;
+    std::uint8_t corner;  // corner_flags() of its box and cell
     std::int64_t cx, cy;
   };
   std::uint64_t bucket(std::int64_t cx, std::int64_t cy) const {
@@ -85,10 +93,12 @@ class CellTable {
                    static_cast<std::uint64_t>(cy) * 0xC2B2AE3D27D4EB4Full;
     return (h ^ (h >> 29)) & mask_;
   }
-  // Whether the cell (cx, cy) holds the lower-left corner of a and b's intersection: the one cell
-  // of those they share that reports them.
-  bool reports(const Box& a, const Box& b, std::int64_t cx, std::int64_t cy) const {
-    return cell(std::max(a.x0, b.x0)) == cx && cell(std::max(a.y0, b.y0)) == cy;
+  // Whether a cell both boxes cover holds the lower-left corner of their intersection, the one
+  // cell of those they share that reports them, from their corner_flags() there: cell() does not
+  // decrease, so the corner's column, cell(max(a.x0, b.x0)), is the later of the two boxes' first
+  // columns, and it is this cell's when either box's first column is; rows likewise.
+  static bool reports(std::uint8_t a, std::uint8_t b) {
+    return ((a | b) & (kFirstColumn | kFirstRow)) == (kFirstColumn | kFirstRow);
   }
 
   double inv_cell_;
@@ -105,18 +115,19 @@ class CellTable {
 template <class Fn>
 void CellTable::for_each_in_cells(const Box& q, Cells c, Fn&& fn) const {
   if (sorted_.empty()) return;
-  if (dense_) {  // no cell outside the range holds anything
+  const Cells covered = c;  // q's own first column and row, before the clamp below
+  if (dense_) {             // no cell outside the range holds anything
     c = {std::max(c.x0, range_.x0), std::max(c.y0, range_.y0), std::min(c.x1, range_.x1),
          std::min(c.y1, range_.y1)};
   }
   for (std::int64_t cy = c.y0; cy <= c.y1; ++cy) {
     for (std::int64_t cx = c.x0; cx <= c.x1; ++cx) {
       const std::uint64_t b = bucket(cx, cy);
+      const std::uint8_t corner = corner_flags(covered, cx, cy);
       for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k) {
         const Entry& e = sorted_[k];
         if (e.cx != cx || e.cy != cy) continue;  // another cell in the same bucket
-        const Box& a = sorted_box_[k];
-        if (touch(q, a) && reports(a, q, cx, cy)) fn(e.index);
+        if (touch(q, sorted_box_[k]) && reports(e.corner, corner)) fn(e.index);
       }
     }
   }
@@ -133,8 +144,7 @@ void CellTable::for_each_pair(Fn&& fn) const {
       for (std::uint32_t m = k + 1; m < last; ++m) {
         const Entry& f = sorted_[m];
         if (f.cx != e.cx || f.cy != e.cy || f.index == e.index) continue;
-        const Box& b = sorted_box_[m];
-        if (touch(a, b) && reports(a, b, e.cx, e.cy)) fn(e.index, f.index);
+        if (touch(a, sorted_box_[m]) && reports(e.corner, f.corner)) fn(e.index, f.index);
       }
     }
   }

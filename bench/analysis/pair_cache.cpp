@@ -5,7 +5,7 @@
 
 namespace chainbench {
 
-PairCache::PairCache(const Scene& scene) : scan_(scene) {
+PairCache::PairCache(const Scene& scene) : scan_(scene, kCellScale) {
   const std::size_t n = scene.bodies.size();
   box_.resize(n);
   fat_.resize(n);
@@ -22,7 +22,7 @@ PairCache::Box PairCache::fatten(std::size_t i, const BodyState& before,
   // A quarter of a cell: a few more pairs on the list than touch, and a body that starts to move
   // stays filed for a few steps. The distance moved keeps a steady mover filed for about two
   // steps more than that.
-  double gx = 0.25 * scan_.cell(), gy = gx;
+  double gx = 0.25 / kCellScale * scan_.cell(), gy = gx;
   if (live_[i]) {
     gx += 2.0 * std::abs(after.position[i].x - before.position[i].x);
     gy += 2.0 * std::abs(after.position[i].y - before.position[i].y);

@@ -90,6 +90,9 @@ class PairCache {
       loose_pairs_.emplace_back(std::min(i, j), std::max(i, j));
   }
 
+  // Cells of twice the size of most boxes: a fat box then covers about three cells rather than
+  // six, which halves the entries a filing sorts, for about as many boxes compared.
+  static constexpr double kCellScale = 2.0;
   PairScan scan_;  // of the fat boxes, as last filed
   std::vector<Box> box_, fat_;
   // Per body: both positions of the step finite (its pairs are reported), its position after the

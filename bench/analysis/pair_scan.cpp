@@ -4,7 +4,7 @@
 
 namespace chainbench {
 
-PairScan::PairScan(const Scene& scene) : rotated_(scene.rotation) {
+PairScan::PairScan(const Scene& scene, double scale) : rotated_(scene.rotation) {
   const std::size_t n = scene.bodies.size();
   std::vector<double> sizes;
   for (const SceneBody& b : scene.bodies) {
@@ -20,7 +20,7 @@ PairScan::PairScan(const Scene& scene) : rotated_(scene.rotation) {
     // Most dynamic boxes fit a cell; the few bigger ones cover a few cells each.
     const auto k = static_cast<std::ptrdiff_t>((sizes.size() - 1) * 9 / 10);
     std::nth_element(sizes.begin(), sizes.begin() + k, sizes.end());
-    cell = std::max(2.0 * sizes[static_cast<std::size_t>(k)], 1e-9);
+    cell = std::max(2.0 * scale * sizes[static_cast<std::size_t>(k)], 1e-9);
   }
   cell_ = cell;
   table_ = CellTable(cell);

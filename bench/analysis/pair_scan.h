@@ -27,7 +27,8 @@ class PairScan {
  public:
   using Box = CellTable::Box;
 
-  explicit PairScan(const Scene& scene);
+  // Cells `scale` times the size of most dynamic boxes (see cell()).
+  explicit PairScan(const Scene& scene, double scale = 1.0);
 
   // Buckets every body's box swept from `before` to `after` (pass the same state twice for a
   // state at rest). Bodies with a non-finite position are left out.
@@ -59,7 +60,7 @@ class PairScan {
   // Half extents as declared, and the box's reach from its centre on either axis at any angle.
   Vec2d half(std::size_t i) const { return half_[i]; }
   bool rotated() const { return rotated_; }
-  // The side of the grid's cells, m: about the size of most dynamic boxes.
+  // The side of the grid's cells, m: about the size of most dynamic boxes, times the scale.
   double cell() const { return cell_; }
   // Body i's box at rest at its position in `s`, at any angle (finite positions only).
   Box at_rest(std::size_t i, const BodyState& s) const {

@@ -19,6 +19,7 @@ void VelocityResponse::apply(Bodies& bodies, double restitution_threshold, Worke
   });
 }
 
+template <bool kBounces>
 void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_threshold,
                                   Groups& g) const {
   if (per_axis_[axis] == 0) return;
@@ -85,21 +86,26 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
     // its root is known by now: find(i) without walking the path.
     const std::uint32_t r = root[i] = parent[i] == i ? i : root[parent[i]];
     if (r == i) {
-      mass[r] = momentum[r] = anchor_sum[r] = restitution[r] = spread[r] = 0.0;
+      mass[r] = momentum[r] = anchor_sum[r] = 0.0;
+      if constexpr (kBounces) restitution[r] = spread[r] = 0.0;
       anchor_count[r] = 0;
     }
     mass[r] += body_mass[i];
     momentum[r] += body_mass[i] * v[i];
-    restitution[r] = std::max(restitution[r], body_restitution[i]);
-    max_restitution = std::max(max_restitution, body_restitution[i]);
+    if constexpr (kBounces) {
+      restitution[r] = std::max(restitution[r], body_restitution[i]);
+      max_restitution = std::max(max_restitution, body_restitution[i]);
+    }
   }
   for (const Link* const anchor : anchored) {
     const Link& l = *anchor;
     const std::uint32_t r = root[l.a];
     anchor_sum[r] += v[l.b];
     ++anchor_count[r];
-    restitution[r] = std::max(restitution[r], body_restitution[l.b]);
-    max_restitution = std::max(max_restitution, body_restitution[l.b]);
+    if constexpr (kBounces) {
+      restitution[r] = std::max(restitution[r], body_restitution[l.b]);
+      max_restitution = std::max(max_restitution, body_restitution[l.b]);
+    }
   }
   // momentum becomes the group velocity: the anchors' mean (several only when a body is
   // crushed between them) or the mass-weighted mean.
@@ -107,6 +113,8 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
     momentum[r] = anchor_count[r] > 0 ? anchor_sum[r] / static_cast<double>(anchor_count[r])
                                       : momentum[r] / mass[r];
   };
+  // Without kBounces, max_restitution stays 0: std::max(0, r) is 0 for every r that is not
+  // above 0.
   if (max_restitution == 0.0) {
     // No group bounces: every member takes its group's velocity, in the same pass, as a group's
     // root (its smallest slot) comes before its other members.
@@ -133,5 +141,8 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
         (e > 0.0 && spread[r] >= restitution_threshold) ? group_v - e * (v[i] - group_v) : group_v;
   }
 }
+
+template void VelocityResponse::apply_axis<true>(Bodies&, int, double, Groups&) const;
+template void VelocityResponse::apply_axis<false>(Bodies&, int, double, Groups&) const;
 
 }  // namespace chain::detail

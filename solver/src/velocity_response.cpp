@@ -77,6 +77,16 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
   }
   if (!any) return;
 
+  // A group held by immovable bodies takes their mean velocity, summed in link order; found
+  // before the slot-order pass, which then sums masses and momenta only for the groups that use
+  // them (at rest, nearly none: every group stands on something).
+  std::fill_n(anchor_count, n, 0u);
+  for (const Link* const anchor : anchored) {
+    const Link& l = *anchor;
+    const std::uint32_t r = find(l.a);
+    if (anchor_count[r]++ == 0) anchor_sum[r] = 0.0;
+    anchor_sum[r] += v[l.b];
+  }
   // Sums run in slot order: the same bits for any creation order. A group's root is its smallest
   // slot, so it comes first, and its sums are cleared before any member adds to them.
   double max_restitution = 0.0;
@@ -85,24 +95,20 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
     // A parent is a member of a smaller slot (unions hang the larger root under the smaller), so
     // its root is known by now: find(i) without walking the path.
     const std::uint32_t r = root[i] = parent[i] == i ? i : root[parent[i]];
-    if (r == i) {
-      mass[r] = momentum[r] = anchor_sum[r] = 0.0;
-      if constexpr (kBounces) restitution[r] = spread[r] = 0.0;
-      anchor_count[r] = 0;
-    }
-    mass[r] += body_mass[i];
-    momentum[r] += body_mass[i] * v[i];
     if constexpr (kBounces) {
+      if (r == i) restitution[r] = spread[r] = 0.0;
       restitution[r] = std::max(restitution[r], body_restitution[i]);
       max_restitution = std::max(max_restitution, body_restitution[i]);
     }
+    if (anchor_count[r] > 0) continue;
+    if (r == i) mass[r] = momentum[r] = 0.0;
+    mass[r] += body_mass[i];
+    momentum[r] += body_mass[i] * v[i];
   }
-  for (const Link* const anchor : anchored) {
-    const Link& l = *anchor;
-    const std::uint32_t r = root[l.a];
-    anchor_sum[r] += v[l.b];
-    ++anchor_count[r];
-    if constexpr (kBounces) {
+  if constexpr (kBounces) {
+    for (const Link* const anchor : anchored) {
+      const Link& l = *anchor;
+      const std::uint32_t r = root[l.a];
       restitution[r] = std::max(restitution[r], body_restitution[l.b]);
       max_restitution = std::max(max_restitution, body_restitution[l.b]);
     }

@@ -79,13 +79,21 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
 
   // A group held by immovable bodies takes their mean velocity, summed in link order; found
   // before the slot-order pass, which then sums masses and momenta only for the groups that use
-  // them (at rest, nearly none: every group stands on something).
-  std::fill_n(anchor_count, n, 0u);
+  // them (at rest, nearly none: every group stands on something). A held root is marked kHeld in
+  // root[], which holds slots otherwise and which the slot-order pass then writes for every
+  // member of every group, so no mark lasts; the other roots' counts are cleared there (a fill of
+  // every body's count cost more than both).
+  constexpr std::uint32_t kHeld = kNoSlot;
   for (const Link* const anchor : anchored) {
     const Link& l = *anchor;
     const std::uint32_t r = find(l.a);
-    if (anchor_count[r]++ == 0) anchor_sum[r] = 0.0;
+    if (root[r] != kHeld) {
+      root[r] = kHeld;
+      anchor_sum[r] = 0.0;
+      anchor_count[r] = 0;
+    }
     anchor_sum[r] += v[l.b];
+    ++anchor_count[r];
   }
   // Sums run in slot order: the same bits for any creation order. A group's root is its smallest
   // slot, so it comes first, and its sums are cleared before any member adds to them.
@@ -94,7 +102,13 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
     if (parent[i] == kNoSlot) continue;
     // A parent is a member of a smaller slot (unions hang the larger root under the smaller), so
     // its root is known by now: find(i) without walking the path.
-    const std::uint32_t r = root[i] = parent[i] == i ? i : root[parent[i]];
+    std::uint32_t r = i;
+    if (parent[i] == i) {
+      if (root[i] != kHeld) anchor_count[i] = 0;
+    } else {
+      r = root[parent[i]];
+    }
+    root[i] = r;
     if constexpr (kBounces) {
       if (r == i) restitution[r] = spread[r] = 0.0;
       restitution[r] = std::max(restitution[r], body_restitution[i]);

@@ -95,9 +95,16 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
     anchor_sum[r] += v[l.b];
     ++anchor_count[r];
   }
+  // momentum becomes the group velocity: the anchors' mean (several only when a body is
+  // crushed between them) or the mass-weighted mean.
+  auto group_velocity = [&](std::uint32_t r) {
+    momentum[r] = anchor_count[r] > 0 ? anchor_sum[r] / static_cast<double>(anchor_count[r])
+                                      : momentum[r] / mass[r];
+  };
   // Sums run in slot order: the same bits for any creation order. A group's root is its smallest
   // slot, so it comes first, and its sums are cleared before any member adds to them.
   double max_restitution = 0.0;
+  bool free_groups = false;  // some group no immovable body holds
   for (std::uint32_t i = 0; i < n; ++i) {
     if (parent[i] == kNoSlot) continue;
     // A parent is a member of a smaller slot (unions hang the larger root under the smaller), so
@@ -114,7 +121,16 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
       restitution[r] = std::max(restitution[r], body_restitution[i]);
       max_restitution = std::max(max_restitution, body_restitution[i]);
     }
-    if (anchor_count[r] > 0) continue;
+    if (anchor_count[r] > 0) {
+      // Without kBounces, a held group's velocity is known already: its members take it here
+      // (the root first), and the pass below, the same again, is left for the other groups.
+      if constexpr (!kBounces) {
+        if (r == i) group_velocity(r);
+        v[i] = momentum[r];
+      }
+      continue;
+    }
+    free_groups = true;
     if (r == i) mass[r] = momentum[r] = 0.0;
     mass[r] += body_mass[i];
     momentum[r] += body_mass[i] * v[i];
@@ -127,15 +143,10 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
       max_restitution = std::max(max_restitution, body_restitution[l.b]);
     }
   }
-  // momentum becomes the group velocity: the anchors' mean (several only when a body is
-  // crushed between them) or the mass-weighted mean.
-  auto group_velocity = [&](std::uint32_t r) {
-    momentum[r] = anchor_count[r] > 0 ? anchor_sum[r] / static_cast<double>(anchor_count[r])
-                                      : momentum[r] / mass[r];
-  };
   // Without kBounces, max_restitution stays 0: std::max(0, r) is 0 for every r that is not
   // above 0.
   if (max_restitution == 0.0) {
+    if (!kBounces && !free_groups) return;  // every member has its velocity
     // No group bounces: every member takes its group's velocity, in the same pass, as a group's
     // root (its smallest slot) comes before its other members.
     for (std::uint32_t i = 0; i < n; ++i) {

@@ -62,12 +62,15 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
   if (anchored.capacity() < links_.capacity()) anchored.reserve(links_.capacity());
   anchored.clear();
   bool any = false;
-  for (const Link& l : links_) {
+  // Each link copied: stores into parent[] (32-bit, as the links' slots are) could otherwise
+  // change it, and its slots were loaded again after each.
+  for (const Link& link : links_) {
+    const Link l = link;
     if (l.axis != axis || !closing(l)) continue;
     any = true;
     if (parent[l.a] == kNoSlot) parent[l.a] = l.a;
     if (l.b >= n) {  // immovable
-      anchored.push_back(&l);
+      anchored.push_back(&link);
       continue;
     }
     if (parent[l.b] == kNoSlot) parent[l.b] = l.b;

@@ -68,13 +68,16 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
     const Link l = link;
     if (l.axis != axis || !closing(l)) continue;
     any = true;
-    if (parent[l.a] == kNoSlot) parent[l.a] = l.a;
+    // A body a link names for the first time is its own root: find() is skipped for it.
+    const bool fresh_a = parent[l.a] == kNoSlot;
+    if (fresh_a) parent[l.a] = l.a;
     if (l.b >= n) {  // immovable
       anchored.push_back(&link);
       continue;
     }
-    if (parent[l.b] == kNoSlot) parent[l.b] = l.b;
-    const std::uint32_t ra = find(l.a), rb = find(l.b);
+    const bool fresh_b = parent[l.b] == kNoSlot;
+    if (fresh_b) parent[l.b] = l.b;
+    const std::uint32_t ra = fresh_a ? l.a : find(l.a), rb = fresh_b ? l.b : find(l.b);
     // The smaller slot becomes the root, so groups do not depend on link order.
     if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
   }

@@ -42,9 +42,12 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
   double* const restitution = g.restitution_.data();
   double* const spread = g.spread_.data();
   auto find = [parent](std::uint32_t i) {
-    while (parent[i] != i) {
-      parent[i] = parent[parent[i]];  // path halving
-      i = parent[i];
+    for (std::uint32_t up = parent[i]; up != i; up = parent[i]) {
+      const std::uint32_t above = parent[up];
+      // up is the root: halving would write parent[i] = up again (at rest, nearly every find).
+      if (above == up) return up;
+      parent[i] = above;  // path halving
+      i = above;
     }
     return i;
   };

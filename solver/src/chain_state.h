@@ -181,8 +181,9 @@ class ChainState {
   // Dynamic bodies in the order the step first reached them, and how many of them were not just
   // ahead of the body reached before (a jump back in memory, or forward past kNearSlots): each
   // such starts a new run of memory, where a walk front to back continues the one it is in.
-  // Counted when asked, from the order: the layout asks at most once in Layout::kMinSteps steps,
-  // and counted at every reach the test cost every placed body about six instructions.
+  // Counted when asked, in one vectorised pass over the order: the layout asks only once
+  // Layout::kMinSteps steps have passed since it last renumbered, and counted at every reach the
+  // test cost every placed body about eight instructions.
   std::span<const std::uint32_t> reach_order() const { return reach_order_; }
   std::size_t reach_jumps() const;
   // A body reached at most this many slots after the one before continues its run: the lines it

@@ -131,9 +131,11 @@ void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id) {
   permute(order, spare);
 
   dynamic_end = movable_end = 0;
+  bounces = false;
   for (std::uint32_t i = 0; i < n; ++i) {
     if (type[i] == BodyType::kDynamic) dynamic_end = i + 1;
     if (type[i] != BodyType::kStatic) movable_end = i + 1;
+    if (restitution[i] > 0.0) bounces = true;
   }
   for (std::uint32_t i = 0; i < n; ++i)
     slot_of_id[id[i]] = i;

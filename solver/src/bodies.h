@@ -61,6 +61,8 @@ struct Bodies {
   // kinematic and the rest static.
   std::uint32_t dynamic_end = 0;
   std::uint32_t movable_end = 0;
+  // Valid after canonicalize(): some body has a restitution above 0 (the velocity rule bounces).
+  bool bounces = false;
 
   std::uint32_t size() const { return static_cast<std::uint32_t>(box.size()); }
   double x(std::uint32_t i) const { return box[i].center[0]; }

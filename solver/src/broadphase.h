@@ -63,6 +63,9 @@ class Broadphase {
     const Point& r = ref_[body];
     return std::max(std::abs(x - r.x), std::abs(y - r.y));
   }
+  // Where each body was last filed, for loops that compute distance() themselves (as the same
+  // operations on both axes at once).
+  const Point* filed_at() const { return ref_.data(); }
   void note_moves(const Bodies& bodies, double largest, std::span<const std::uint32_t> far) {
     margin_ = std::max(margin_, std::min(largest, refile_));
     for (const std::uint32_t i : far)

@@ -181,8 +181,11 @@ class ChainState {
   // Dynamic bodies in the order the step first reached them, and how many of them were not just
   // ahead of the body reached before (a jump back in memory, or forward past kNearSlots): each
   // such starts a new run of memory, where a walk front to back continues the one it is in.
+  // Counted when asked, in one vectorised pass over the order: the layout asks only once
+  // Layout::kMinSteps steps have passed since it last renumbered, and counted at every reach the
+  // test cost every placed body about eight instructions.
   std::span<const std::uint32_t> reach_order() const { return reach_order_; }
-  std::size_t reach_jumps() const { return reach_jumps_; }
+  std::size_t reach_jumps() const;
   // A body reached at most this many slots after the one before continues its run: the lines it
   // needs are those the walk just read, or the next few, which the hardware prefetches.
   static constexpr std::uint32_t kNearSlots = 8;
@@ -211,13 +214,6 @@ class ChainState {
     if (m.reached == step_) return;
     m.reached = step_;
     m.crushed = false;
-    // A layer-by-layer walk over a Z-ordered pile rarely goes back, but it skips forward over the
-    // other layers' bodies: every layer is a sweep over all of memory, and at a million bodies
-    // nearly every body it reaches is a cache miss. Jumps forward count as much as back.
-    if (!reach_order_.empty() &&
-        (body < reach_order_.back() || body - reach_order_.back() > kNearSlots)) {
-      ++reach_jumps_;
-    }
     reach_order_.push_back(body);
   }
 
@@ -231,7 +227,6 @@ class ChainState {
   mutable std::vector<std::uint32_t> refiled_;  // gather_overlaps_refiled's list for a SlotList
   std::uint32_t suspect_stamp_ = 1;
   std::vector<std::uint32_t> reach_order_;  // each body at most once a step: capacity n
-  std::size_t reach_jumps_ = 0;
 };
 
 }  // namespace chain::detail

@@ -27,9 +27,12 @@ class Layout {
   // the body set changes. It does not restart the count of steps since the last renumbering, so
   // a world whose body set changes every step is still renumbered at most once in 32 steps.
   void reset(std::size_t bodies);
-  // After a step that first reached the dynamic bodies `reached` in that order, with `jumps`
-  // jumps in memory (ChainState::reach_jumps): the order to renumber the slots in (slot i takes
-  // the body of slot order[i]), or empty when the layout is good enough.
+  // Call once after every step: true when this step may renumber (at most one in kMinSteps),
+  // and plan() is to be asked.
+  bool due() { return ++steps_since_ >= kMinSteps; }
+  // After a step that due() allowed and that first reached the dynamic bodies `reached` in that
+  // order, with `jumps` jumps in memory (ChainState::reach_jumps): the order to renumber the
+  // slots in (slot i takes the body of slot order[i]), or empty when the layout is good enough.
   std::span<const std::uint32_t> plan(const Bodies& bodies, std::span<const std::uint32_t> reached,
                                       std::size_t jumps);
   Bodies::Spare& spare() { return spare_; }

@@ -51,6 +51,16 @@ class VelocityResponse {
     std::vector<std::uint32_t> anchor_count_;
     std::vector<const Link*> anchored_;  // this pass's closing links to immovable bodies
   };
+  void apply_axis(Bodies& bodies, int axis, double restitution_threshold, Groups& g) const {
+    if (bodies.bounces) {
+      apply_axis<true>(bodies, axis, restitution_threshold, g);
+    } else {
+      apply_axis<false>(bodies, axis, restitution_threshold, g);
+    }
+  }
+  // kBounces false: no body has a restitution above 0 (Bodies::bounces), and the groups'
+  // restitutions, all 0, are not summed.
+  template <bool kBounces>
   void apply_axis(Bodies& bodies, int axis, double restitution_threshold, Groups& g) const;
 
   std::vector<Link> links_;

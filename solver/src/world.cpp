@@ -271,7 +271,7 @@ void World::step(double dt) {
     w.crushes.push_back({BodyId{w.bodies.id[r.body]}, BodyId{w.bodies.id[r.anchor]},
                          BodyId{w.bodies.id[r.blocker]}, r.axis});
   }
-  if (modern) {
+  if (modern && w.layout.due()) {  // the jumps are counted only when a renumbering may follow
     const std::span<const std::uint32_t> order =
         w.layout.plan(w.bodies, w.modern.reach_order(), w.modern.reach_jumps());
     if (!order.empty()) {

@@ -181,6 +181,20 @@ TEST_P(RefusedCall, ExitsWithStatusTwoAndSaysWhy) {
   EXPECT_NE(r.out.find(GetParam().message), std::string::npos) << r.out;
 }
 
+// The first step is left out of the timing as a warm-up, except when it is the only one: a run
+// of one step is timed by it rather than reported as taking no time.
+TEST(Cli, ARunOfOneStepIsTimedByThatStep) {
+  const std::string json = temp("one_step.json");
+  const Result r =
+      chainbench("run --scene stack --steps 1 --engines chain --reference none --json " + json);
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream in(json);
+  const auto j = nlohmann::json::parse(in);
+  const auto& timing = j.at("runs").at(0).at("ms_per_step");
+  EXPECT_EQ(timing.at("samples").get<int>(), 1);
+  EXPECT_GT(timing.at("median").get<double>(), 0.0);
+}
+
 TEST(Cli, VersionIsPrinted) {
   const Result r = chainbench("--version");
   EXPECT_EQ(r.status, 0);

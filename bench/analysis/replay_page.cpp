@@ -233,6 +233,14 @@ ReplayPageSummary write_replay_page(std::ostream& out, const RunReport& report,
     stride = std::min(s.steps, std::max(stride + 1, static_cast<int>(std::ceil(stride * ratio))));
     size = positions_size(stride);
   }
+  if (fixed + size > options.max_bytes) {
+    throw InputError("the replay page of " + s.name + " needs at least " +
+                     fmt_g(static_cast<double>(fixed + size) / 1e6, 3) +
+                     " MB (its player, and the first and last state of every body), more than " +
+                     options.limit_option + " " +
+                     fmt_g(static_cast<double>(options.max_bytes) / 1e6, 3) +
+                     " allows: raise it, or write fewer engines or steps");
+  }
   data["stride"] = stride;
   for (std::size_t k = 0; k < tracks.size(); ++k)
     data["engines"][k]["positions"] = base64(tracks[k]->positions.decimated(stride));

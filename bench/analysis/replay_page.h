@@ -18,8 +18,9 @@
 namespace chainbench {
 
 struct ReplayPageOptions {
-  std::size_t max_bytes = 20'000'000;  // steps are decimated until the page fits
-  std::string generator;               // "chainbench 0.1.0"
+  std::size_t max_bytes = 20'000'000;        // steps are decimated until the page fits
+  std::string generator;                     // "chainbench 0.1.0"
+  std::string limit_option = "--replay-mb";  // how the user set max_bytes, for messages
 };
 
 struct ReplayPageSummary {
@@ -35,7 +36,8 @@ inline constexpr double kMaxReplayBodyStates = 12e6;
 // InputError naming the scene when it is too big for a page (kMaxReplayBodyStates).
 void check_replay_size(const Scene& scene);
 
-// Writes the page of the runs in `report`, recorded by `recorder`.
+// Writes the page of the runs in `report`, recorded by `recorder`. Throws InputError, before
+// writing anything, when even its first and last states do not fit options.max_bytes.
 ReplayPageSummary write_replay_page(std::ostream& out, const RunReport& report,
                                     const ReplayRecorder& recorder,
                                     const ReplayPageOptions& options);

@@ -1,11 +1,11 @@
 // chainbench replay: one scene in several engines, written as a page that plays them
 // (replay_page.h); `run --replay FILE` writes the same page beside run's other outputs.
 #include "commands.h"
-#include "value_checks.h"
 #include "engine_choice.h"
 #include "input_error.h"
 #include "registry.h"
 #include "run_scene.h"
+#include "value_checks.h"
 
 #include <memory>
 
@@ -14,6 +14,7 @@ namespace chainbench {
 void add_replay_command(CLI::App& app, int* status) {
   auto args = std::make_shared<RunArgs>();
   args->replay_option = "--out";
+  args->replay_mb_option = "--max-mb";
   CLI::App* r = app.add_subcommand(
       "replay", "Write one self-contained HTML page that plays every engine's run of a scene");
   auto* scene = r->add_option("--scene", args->scene, "built-in scene (chainbench list)");

@@ -1,6 +1,5 @@
 // chainbench run: one scene in several engines, side by side.
 #include "commands.h"
-#include "value_checks.h"
 #include "engine_choice.h"
 #include "input_error.h"
 #include "output_file.h"
@@ -14,9 +13,11 @@
 #include "scene_library.h"
 #include "text_table.h"
 #include "trace_writer.h"
+#include "value_checks.h"
 #include "verdict.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -131,7 +132,15 @@ int run_scene(const RunArgs& a) {
     ReplayPageOptions page;
     page.generator = "chainbench " CHAINBENCH_VERSION;
     page.max_bytes = static_cast<std::size_t>(a.replay_mb * 1e6);
-    const ReplayPageSummary written = write_replay_page(*replay_out, report, *replay, page);
+    page.limit_option = a.replay_mb_option;
+    ReplayPageSummary written;
+    try {
+      written = write_replay_page(*replay_out, report, *replay, page);
+    } catch (const InputError&) {
+      replay_out.reset();
+      std::remove(a.replay.c_str());  // left empty, it would look like a page written
+      throw;
+    }
     finish_output(replay_out.get(), a.replay);
     std::cout << "replay: wrote " << a.replay << " (" << fmt_g(written.bytes / 1e6, 3)
               << " MB; centres to " << fmt_g(written.quantum, 3) << " m, "

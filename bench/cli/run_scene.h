@@ -18,6 +18,7 @@ struct RunArgs {
   std::string replay;                      // the replay page (replay_page.h), or empty
   const char* replay_option = "--replay";  // how the user named it, for messages
   double replay_mb = 20.0;                 // its size limit
+  const char* replay_mb_option = "--replay-mb";
   std::string metrics = "all";
   std::vector<std::string> require;
 };

@@ -391,6 +391,24 @@ TEST(Cli, RunWritesAReplayPageOfItsEngines) {
   EXPECT_EQ(j["engines"][0]["series"]["efd"].size(), 21u);
 }
 
+// A page that cannot fit its size limit even with only its first and last states is refused,
+// naming the size it needs, and leaves no file; one that fits keeps within the limit.
+TEST(Cli, AReplayPageKeepsItsSizeLimitOrIsRefused) {
+  const std::string page = temp("limit.html");
+  std::remove(page.c_str());
+  Result r = chainbench(
+      "replay --scene pyramid --set base=60 --engines chain,box2d --max-mb 0.1 --out " + page);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("needs at least"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("more than --max-mb 0.1 allows"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::ifstream(page).good());
+  r = chainbench("replay --scene pyramid --set base=60 --engines chain,box2d --max-mb 0.5 --out " +
+                 page);
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream in(page, std::ios::binary | std::ios::ate);
+  EXPECT_LE(static_cast<double>(in.tellg()), 0.5e6);
+}
+
 }  // namespace
 
 namespace {

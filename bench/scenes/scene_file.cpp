@@ -571,10 +571,29 @@ Scene load_scene_file(const std::string& path) {
     throw InputError(path + ": cannot open the file" +
                      (errno != 0 ? " (" + std::string(std::strerror(errno)) + ")" : ""));
   }
-  std::ostringstream text;
-  text << in.rdbuf();
+  // Read in pieces up to a bound, so that a device or a pipe with no end (/dev/zero) is refused
+  // instead of filling memory. The most bodies a scene holds fit in far less.
+  constexpr std::size_t kMaxBytes = 2'000'000'000;
+  const auto too_big = [&] {
+    return InputError(path + ": larger than 2 GB, more than a scene of " +
+                      std::to_string(limits::kMaxBodies) +
+                      " bodies (the most a scene holds) needs");
+  };
+  if (status.type() == std::filesystem::file_type::regular &&
+      std::filesystem::file_size(path, ec) > kMaxBytes && !ec) {
+    throw too_big();
+  }
+  std::string text;
+  constexpr std::size_t kPiece = 1 << 20;
+  while (in) {
+    const std::size_t at = text.size();
+    if (at > kMaxBytes) throw too_big();
+    text.resize(at + kPiece);
+    in.read(text.data() + at, static_cast<std::streamsize>(kPiece));
+    text.resize(at + static_cast<std::size_t>(in.gcount()));
+  }
   if (in.bad()) throw InputError(path + ": cannot read the file");
-  return parse_scene(text.str(), path);
+  return parse_scene(text, path);
 }
 
 }  // namespace chainbench

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
@@ -193,6 +194,18 @@ TEST(Cli, ARunOfOneStepIsTimedByThatStep) {
   const auto& timing = j.at("runs").at(0).at("ms_per_step");
   EXPECT_EQ(timing.at("samples").get<int>(), 1);
   EXPECT_GT(timing.at("median").get<double>(), 0.0);
+}
+
+// A scene file larger than any scene needs is refused before it is read (a sparse file here;
+// a device with no end, /dev/zero, is refused once that much has been read).
+TEST(Cli, ASceneFileLargerThanAnySceneNeedsIsRefused) {
+  const std::string path = temp("huge_scene.json");
+  { std::ofstream(path) << "{"; }
+  std::filesystem::resize_file(path, 3'000'000'000ull);
+  const Result r = chainbench("run --scene-file " + path);
+  std::filesystem::remove(path);
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find(path + ": larger than 2 GB"), std::string::npos) << r.out;
 }
 
 TEST(Cli, VersionIsPrinted) {

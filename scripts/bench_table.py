@@ -214,6 +214,8 @@ def results_table(context, runs, accuracy, subject, reference):
     error and who meets the answer (with accuracy runs), and the subject's time per body."""
     recipes = family_recipes(context)
     engines, groups = ordered(runs)
+    if not groups:  # a run of the harness rows alone, say
+        return []
     ratio_title = f" {reference} / {subject} |" if reference and reference != subject else ""
     error_title = (f" {subject} vs {reference} max m | meets the scene's answer |"
                    if accuracy and ratio_title else "")
@@ -316,10 +318,10 @@ def harness_table(context, runs, subject):
         return []
     return ["", f"Harness cost: a bare `{subject}` step, and a step plus reading the state back and "
             "computing every metric of `chainbench run` after it (`harness/FAMILY/SIZE/metrics:0|1`); "
-            "on moving scenes, \"least\" is a step plus only reading the state back and judging "
-            "the pairs with a moved body (`metrics:2`), what any harness that judges them every "
-            "step adds:",
-            "", "| scene | bodies | bare ms/step | with metrics ms/step | ratio | least |",
+            "on moving scenes, \"least ratio\" is that of a step plus only reading the state back "
+            "and judging the pairs with a moved body (`metrics:2`): the least that any harness "
+            "judging them every step costs:",
+            "", "| scene | bodies | bare ms/step | with metrics ms/step | ratio | least ratio |",
             "|---|---:|---:|---:|---:|---:|"] + out
 
 

@@ -11,7 +11,8 @@
 #   results/bench_quick.json           a quick Google Benchmark subset (scaling)
 #   results/plots/*.png                the plots (scripts/plot.py)
 #   results/report.md                  everything above in one page
-# About a minute once built (the build itself takes a few minutes on a 2-core machine).
+# About three minutes once built, two of them the benchmark subset (the build itself takes a few
+# minutes on a 2-core machine).
 # Options: --no-bench skips the benchmark subset.
 set -euo pipefail
 cd "$(dirname "$0")/.."

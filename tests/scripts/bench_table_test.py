@@ -157,7 +157,7 @@ class HarnessTableTest(unittest.TestCase):
         lines = bench_table.tables(context, runs).splitlines()
         start = next(i for i, line in enumerate(lines) if line.startswith("Harness cost: a bare `fast` step"))
         self.assertEqual(lines[start + 2],
-                         "| scene | bodies | bare ms/step | with metrics ms/step | ratio | least |")
+                         "| scene | bodies | bare ms/step | with metrics ms/step | ratio | least ratio |")
         self.assertEqual(lines[start + 4:start + 7], [
             "| `many_pyramids` rows=cols=10 | 5,510 | 0.250 | 0.260 | 1.04x | - |",
             "| `many_pyramids` rows=cols=100 | 550,100 | 50.0 | 52.5 | 1.05x | - |",
@@ -165,6 +165,12 @@ class HarnessTableTest(unittest.TestCase):
         self.assertFalse(any("rows=cols=20 |" in line for line in lines[start:]))
         # The harness rows are not scenes of the results table.
         self.assertFalse(any(line.startswith("| `harness`") for line in lines))
+        # With nothing but harness rows there is no results table, not an empty one.
+        alone = {key: run for key, run in runs.items() if key[0] == "harness"}
+        lines = bench_table.tables(context, alone).splitlines()
+        self.assertFalse(any(line.startswith("| scene | bodies | ") and "bare ms/step" not in line
+                             for line in lines))
+        self.assertTrue(any(line.startswith("Harness cost") for line in lines))
 
 
 class AccuracyRunsTest(unittest.TestCase):

@@ -171,6 +171,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"run --scene stack --steps 0", "--steps: 0 is outside [1, 10000000]"},
         BadCall{"run --scene stack --replay-mb x", "--replay-mb: \"x\" is not a number"},
         BadCall{"stress --timeout nan", "--timeout: nan is outside [1, 86400]"},
+        BadCall{"run --scene random_pile --set seed=2147483648",
+                "2147483648 is out of range [0, 2147483647]"},
         BadCall{"run --scene stack --bogus",
                 "chainbench: The following argument was not expected"}),
     [](const auto& info) { return "Case" + std::to_string(info.index); });
@@ -277,6 +279,10 @@ TEST(Cli, ListAndEnginesDescribeWhatCanRun) {
         "seed_squeeze", "seed_falling_row"}) {
     EXPECT_NE(list.out.find(std::string("  ") + scene + ": "), std::string::npos) << scene;
   }
+  // Ranges in full: a rounded bound would look equal to a value just past it.
+  EXPECT_NE(list.out.find("[0, 2147483647] whole"), std::string::npos) << list.out;
+  EXPECT_NE(list.out.find("[1, 10000000] whole"), std::string::npos) << list.out;
+  EXPECT_EQ(list.out.find("e+0"), std::string::npos) << list.out;
   const Result engines = chainbench("engines");
   EXPECT_EQ(engines.status, 0);
   EXPECT_NE(engines.out.find("chain:variant=modern,velocity=inelastic"), std::string::npos)

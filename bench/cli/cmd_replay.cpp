@@ -1,11 +1,11 @@
 // chainbench replay: one scene in several engines, written as a page that plays them
 // (replay_page.h); `run --replay FILE` writes the same page beside run's other outputs.
 #include "commands.h"
-#include "value_checks.h"
 #include "engine_choice.h"
 #include "input_error.h"
 #include "registry.h"
 #include "run_scene.h"
+#include "value_checks.h"
 
 #include <memory>
 
@@ -17,7 +17,8 @@ void add_replay_command(CLI::App& app, int* status) {
   CLI::App* r = app.add_subcommand(
       "replay", "Write one self-contained HTML page that plays every engine's run of a scene");
   auto* scene = r->add_option("--scene", args->scene, "built-in scene (chainbench list)");
-  auto* file = r->add_option("--scene-file", args->scene_file, "scene file (JSON, schema 1)");
+  auto* file = r->add_option("--scene-file", args->scene_file, "scene file (JSON, schema 1)")
+                   ->check(non_empty_path("scene file"));
   scene->excludes(file);
   r->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
   r->add_option("--engines", args->engines,

@@ -1,6 +1,5 @@
 // chainbench run: one scene in several engines, side by side.
 #include "commands.h"
-#include "value_checks.h"
 #include "engine_choice.h"
 #include "input_error.h"
 #include "output_file.h"
@@ -14,6 +13,7 @@
 #include "scene_library.h"
 #include "text_table.h"
 #include "trace_writer.h"
+#include "value_checks.h"
 #include "verdict.h"
 
 #include <algorithm>
@@ -160,7 +160,8 @@ void add_run_command(CLI::App& app, int* status) {
   CLI::App* run_app =
       app.add_subcommand("run", "Run one scene in several engines and compare them");
   auto* scene = run_app->add_option("--scene", args->scene, "built-in scene (chainbench list)");
-  auto* file = run_app->add_option("--scene-file", args->scene_file, "scene file (JSON, schema 1)");
+  auto* file = run_app->add_option("--scene-file", args->scene_file, "scene file (JSON, schema 1)")
+                   ->check(non_empty_path("scene file"));
   scene->excludes(file);
   run_app->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
   run_app

@@ -1,6 +1,5 @@
 // chainbench sweep: error against run time over a grid of engine settings.
 #include "commands.h"
-#include "value_checks.h"
 #include "input_error.h"
 #include "output_file.h"
 #include "progress.h"
@@ -9,6 +8,7 @@
 #include "scene_library.h"
 #include "shard.h"
 #include "sweep.h"
+#include "value_checks.h"
 
 #include <atomic>
 #include <csignal>
@@ -149,7 +149,8 @@ void add_sweep_command(CLI::App& app, int* status) {
   CLI::App* sweep_app =
       app.add_subcommand("sweep", "Error against run time over a grid of engine settings");
   sweep_app->add_option("--scene", args->scenes, "built-in scene (repeatable)");
-  sweep_app->add_option("--scene-file", args->scene_files, "scene file (repeatable)");
+  sweep_app->add_option("--scene-file", args->scene_files, "scene file (repeatable)")
+      ->check(non_empty_path("scene file"));
   sweep_app->add_option("--set", args->sets, "KEY=VALUE for every built-in scene (repeatable)");
   sweep_app->add_option("--grid", args->grids,
                         "NAME:key=v1,v2;key=v3,... every combination (repeatable); "

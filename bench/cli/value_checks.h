@@ -30,6 +30,15 @@ inline CLI::Validator whole_number_in(std::int64_t lo, std::int64_t hi) {
       range);
 }
 
+// A path that is not empty: an empty one would otherwise be taken as "not given" further on.
+inline CLI::Validator non_empty_path(const std::string& what) {
+  return CLI::Validator(
+      [what](std::string& text) -> std::string {
+        return text.empty() ? "the " + what + " path is empty" : std::string();
+      },
+      "");
+}
+
 // A finite number in [lo, hi].
 inline CLI::Validator number_in(double lo, double hi) {
   std::ostringstream r;

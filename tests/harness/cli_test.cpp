@@ -173,6 +173,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"stress --timeout nan", "--timeout: nan is outside [1, 86400]"},
         BadCall{"run --scene random_pile --set seed=2147483648",
                 "2147483648 is out of range [0, 2147483647]"},
+        BadCall{"run --scene-file ''", "--scene-file: the scene file path is empty"},
+        BadCall{"sweep --scene-file ''", "--scene-file: the scene file path is empty"},
+        BadCall{"replay --scene-file '' --out /tmp/x.html",
+                "--scene-file: the scene file path is empty"},
         BadCall{"run --scene stack --bogus",
                 "chainbench: The following argument was not expected"}),
     [](const auto& info) { return "Case" + std::to_string(info.index); });

@@ -177,6 +177,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"sweep --scene-file ''", "--scene-file: the scene file path is empty"},
         BadCall{"replay --scene-file '' --out /tmp/x.html",
                 "--scene-file: the scene file path is empty"},
+        BadCall{"--frob", "chainbench: unknown option --frob (commands: list, "},
+        BadCall{"run --scene stack --scene pyramid", "--scene given 2 times; give it once"},
         BadCall{"run --scene stack --bogus",
                 "chainbench: The following argument was not expected"}),
     [](const auto& info) { return "Case" + std::to_string(info.index); });
@@ -296,6 +298,8 @@ TEST(Cli, ListAndEnginesDescribeWhatCanRun) {
   }
   EXPECT_NE(engines.out.find("vel_iters"), std::string::npos);
   EXPECT_EQ(chainbench("--help").status, 0);
+  EXPECT_EQ(chainbench("-h").status, 0);
+  EXPECT_EQ(chainbench("--help-all").status, 0);
 }
 
 // The example scene files load, run in every default engine, and the modern solver lands where

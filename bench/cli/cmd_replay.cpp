@@ -30,7 +30,9 @@ void add_replay_command(CLI::App& app, int* status) {
                     default_reference().label());
   r->add_option("--steps", args->steps, "steps to run instead of the scene's")
       ->check(whole_number_in(1, 10'000'000));
-  r->add_option("--out", args->replay, "the page to write (HTML)")->required();
+  r->add_option("--out", args->replay, "the page to write (HTML)")
+      ->required()
+      ->check(non_empty_path("output file"));
   r->add_option("--max-mb", args->replay_mb,
                 "size limit: beyond it only one step in k keeps its positions")
       ->capture_default_str()

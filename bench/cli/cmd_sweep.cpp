@@ -162,12 +162,17 @@ void add_sweep_command(CLI::App& app, int* status) {
           accurate_reference().label());
   sweep_app->add_option("--steps", args->steps, "steps to run instead of each scene's")
       ->check(whole_number_in(1, 10'000'000));
-  sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here");
-  sweep_app->add_option("--csv", args->csv, "write one CSV row per point here");
+  sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here")
+      ->check(non_empty_path("output file"));
+  sweep_app->add_option("--csv", args->csv, "write one CSV row per point here")
+      ->check(non_empty_path("output file"));
   sweep_app->add_option("--shard", args->shard,
                         "K/N: run the K-th of N parts of the grid (points K, K+N, ...); "
                         "chainbench merge joins the parts' JSON");
-  sweep_app->callback([args, status] { *status = run(*args); });
+  sweep_app->callback([args, status] {
+    refuse_shared_outputs({{"--json", &args->json}, {"--csv", &args->csv}});
+    *status = run(*args);
+  });
 }
 
 }  // namespace chainbench

@@ -10,6 +10,7 @@
 #include "sweep.h"
 #include "value_checks.h"
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <iostream>
@@ -52,9 +53,13 @@ int run(const SweepArgs& a) {
   if (scenes.empty())
     throw InputError("sweep: give --scene NAME or --scene-file FILE (repeatable)");
   std::vector<EngineSpec> grid;
+  // A point given twice would be run and reported twice: refuse it, as run's --engines does.
   for (const std::string& g : a.grids) {
-    for (EngineSpec& s : parse_grid(g))
+    for (EngineSpec& s : parse_grid(g)) {
+      if (std::find(grid.begin(), grid.end(), s) != grid.end())
+        throw InputError("--grid: point " + s.label() + " given twice");
       grid.push_back(std::move(s));
+    }
   }
   const bool given = !grid.empty();
   if (!given) grid = default_sweep_grid();

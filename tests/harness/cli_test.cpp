@@ -191,6 +191,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"replay --scene stack --out ''", "--out: the output file path is empty"},
         BadCall{"merge /tmp/x.json --json ''", "--json: the output file path is empty"},
         BadCall{"run --scene stack --replay-mb 5", "--replay-mb requires --replay"},
+        BadCall{"sweep --scene stack --grid chain:passes=1,1", "--grid: point "},
+        BadCall{"sweep --scene stack --grid chain:passes=1 --grid chain:passes=1", "given twice"},
         BadCall{"run --scene stack --bogus",
                 "chainbench: The following argument was not expected"}),
     [](const auto& info) { return "Case" + std::to_string(info.index); });

@@ -457,3 +457,30 @@ TEST(Cli, PluginFaultsExitTwoWithTheirReason) {
 }
 
 }  // namespace
+
+// merge checks the form of each part's results and shard block, naming file, field and reason,
+// rather than failing on a JSON type error or merging a point it cannot read.
+TEST(Cli, MergeNamesAMalformedPartsFieldAndWhy) {
+  const std::string part = ::testing::TempDir() + "cb_merge_part.json";
+  const Result ran =
+      chainbench("sweep --scene stack --grid chain:passes=1,2 --shard 1/2 --json " + part);
+  ASSERT_EQ(ran.status, 0) << ran.out;
+  nlohmann::ordered_json good;
+  std::ifstream(part) >> good;
+  auto refused = [&](nlohmann::ordered_json bad, const std::string& message) {
+    const std::string path = ::testing::TempDir() + "cb_merge_bad.json";
+    std::ofstream(path) << bad.dump();
+    const Result r = chainbench("merge " + path);
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find(path + ": " + message), std::string::npos) << r.out;
+  };
+  nlohmann::ordered_json bogus_point = good;
+  bogus_point["scenes"][0]["points"][0] = {{"bogus", 1}};
+  refused(bogus_point, "scenes[0].points[0].engine: missing (should be a string)");
+  nlohmann::ordered_json string_shard = good;
+  string_shard["shard"] = "1/2";
+  refused(string_shard, "shard: should be an object, got string");
+  nlohmann::ordered_json bad_index = good;
+  bad_index["shard"]["index"] = "one";
+  refused(bad_index, "shard.index: should be a whole number, 0 or more, got string");
+}

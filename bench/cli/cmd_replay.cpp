@@ -29,7 +29,7 @@ void add_replay_command(CLI::App& app, int* status) {
                 "engine the chart measures the others from, or none; default: " +
                     default_reference().label());
   r->add_option("--steps", args->steps, "steps to run instead of the scene's")
-      ->check(whole_number_in(1, 10'000'000));
+      ->transform(whole_number_in(1, 10'000'000));
   r->add_option("--out", args->replay, "the page to write (HTML)")
       ->required()
       ->check(non_empty_path("output file"));

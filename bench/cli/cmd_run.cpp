@@ -173,7 +173,7 @@ void add_run_command(CLI::App& app, int* status) {
       "--reference", args->reference,
       "engine the others are compared with, or none; default: " + default_reference().label());
   run_app->add_option("--steps", args->steps, "steps to run instead of the scene's")
-      ->check(whole_number_in(1, 10'000'000));
+      ->transform(whole_number_in(1, 10'000'000));
   run_app->add_option("--json", args->json, "write the chainbench.run/1 JSON here")
       ->check(non_empty_path("output file"));
   run_app->add_option("--csv", args->csv, "write one CSV row per engine here")

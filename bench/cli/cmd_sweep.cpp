@@ -166,7 +166,7 @@ void add_sweep_command(CLI::App& app, int* status) {
       "default: " +
           accurate_reference().label());
   sweep_app->add_option("--steps", args->steps, "steps to run instead of each scene's")
-      ->check(whole_number_in(1, 10'000'000));
+      ->transform(whole_number_in(1, 10'000'000));
   sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here")
       ->check(non_empty_path("output file"));
   sweep_app->add_option("--csv", args->csv, "write one CSV row per point here")

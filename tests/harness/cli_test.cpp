@@ -193,6 +193,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"run --scene stack --replay-mb 5", "--replay-mb requires --replay"},
         BadCall{"sweep --scene stack --grid chain:passes=1,1", "--grid: point "},
         BadCall{"sweep --scene stack --grid chain:passes=1 --grid chain:passes=1", "given twice"},
+        BadCall{"run --scene stack --steps 1e3 --set steps=5", "--steps sets it too"},
+        BadCall{"run --scene stack --steps 1e8", "--steps: 1e8 is outside [1, 10000000]"},
+        BadCall{"run --scene stack --steps nan", "--steps: \"nan\" is not a whole number"},
+        BadCall{"run --scene stack --steps ''", "--steps"},
         BadCall{"run --scene stack --bogus",
                 "chainbench: The following argument was not expected"}),
     [](const auto& info) { return "Case" + std::to_string(info.index); });
@@ -201,6 +205,16 @@ TEST_P(RefusedCall, ExitsWithStatusTwoAndSaysWhy) {
   const Result r = chainbench(GetParam().args);
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(GetParam().message), std::string::npos) << r.out;
+}
+
+// --steps takes a whole number in any form, as --set does: 1e1 is ten steps.
+TEST(Cli, StepsTakesAWholeNumberWrittenInAnyForm) {
+  for (const char* steps : {"1e1", "10.0", "10"}) {
+    const Result r = chainbench(std::string("run --scene stack --engines chain --reference none "
+                                            "--steps ") +
+                                steps);
+    EXPECT_EQ(r.status, 0) << steps << ": " << r.out;
+  }
 }
 
 TEST(Cli, VersionIsPrinted) {

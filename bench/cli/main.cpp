@@ -17,7 +17,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"chainbench: collision chaining against rigid-body engines, in numbers"};
   app.require_subcommand(1);
-  app.set_help_all_flag("--help-all", "every subcommand's help");
+  app.set_help_all_flag("--help-all", "this help and every command's help");
   app.set_version_flag("--version", "chainbench " CHAINBENCH_VERSION);
   int status = 0;
   chainbench::add_list_commands(app, &status);
@@ -26,6 +26,12 @@ int main(int argc, char** argv) {
   chainbench::add_stress_command(app, &status);
   chainbench::add_replay_command(app, &status);
   chainbench::add_merge_command(app, &status);
+  // Each command inherits --help-all, but has no commands below it: there it prints what --help
+  // does, and says so.
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    sub->set_help_all_flag("--help-all",
+                           "this command's help, as --help (chainbench --help-all: every "
+                           "command's help)");
   // Every message of ours starts with the command's name; so do CLI11's.
   // CLI11 says "--scene: At Most 1 required but received 2" of an option given twice: say so.
   app.failure_message([](const CLI::App*, const CLI::Error& e) {

@@ -334,6 +334,12 @@ TEST(Cli, ListAndEnginesDescribeWhatCanRun) {
   EXPECT_EQ(chainbench("--help").status, 0);
   EXPECT_EQ(chainbench("-h").status, 0);
   EXPECT_EQ(chainbench("--help-all").status, 0);
+  // A command's --help-all says that it prints that command's help only.
+  const Result run_help = chainbench("run --help");
+  EXPECT_NE(run_help.out.find("this command's help, as --help"), std::string::npos) << run_help.out;
+  const Result run_all = chainbench("run --help-all");
+  EXPECT_EQ(run_all.status, 0);
+  EXPECT_NE(run_all.out.find("--scene-file"), std::string::npos) << run_all.out;
 }
 
 // The example scene files load, run in every default engine, and the modern solver lands where

@@ -92,9 +92,9 @@ Block read_block(const ShardPart& p) {
   field(p, s, "shard", "version", &J::is_string, "a string");
   field(p, s, "shard", "grid", &J::is_string, "a string");
   for (const char* key : {"index", "count", "units"})
-    field(p, s, "shard", key, &J::is_number_unsigned, "a whole number, 0 or more");
+    field(p, s, "shard", key, &J::is_number_integer, "a whole number");
   for (const J& u : field(p, s, "shard", "ran", &J::is_array, "an array")) {
-    if (!u.is_number_unsigned())
+    if (!u.is_number_unsigned() && !(u.is_number_integer() && u.get<long long>() >= 0))
       throw InputError(p.file + ": shard.ran: should hold whole numbers, got " +
                        std::string(u.type_name()));
   }

@@ -508,5 +508,5 @@ TEST(Cli, MergeNamesAMalformedPartsFieldAndWhy) {
   refused(string_shard, "shard: should be an object, got string");
   nlohmann::ordered_json bad_index = good;
   bad_index["shard"]["index"] = "one";
-  refused(bad_index, "shard.index: should be a whole number, 0 or more, got string");
+  refused(bad_index, "shard.index: should be a whole number, got string");
 }

@@ -21,6 +21,62 @@ struct Block {
   std::vector<std::size_t> ran;
 };
 
+// The field `key` of `j` (at `where` in the part), of the kind `is` checks; InputError naming
+// the file, the field and what it should be.
+const ordered_json& field(const ShardPart& p, const ordered_json& j, const std::string& where,
+                          const char* key, bool (ordered_json::*is)() const noexcept,
+                          const char* kind) {
+  const std::string name = where.empty() ? std::string(key) : where + "." + key;
+  const auto it = j.find(key);
+  if (it == j.end()) throw InputError(p.file + ": " + name + ": missing (should be " + kind + ")");
+  if (!((*it).*is)())
+    throw InputError(p.file + ": " + name + ": should be " + kind + ", got " + it->type_name());
+  return *it;
+}
+
+// The results a part holds are of the form its command writes, so that merging them cannot
+// stumble on a field that is missing or of another kind.
+void check_results(const ShardPart& p, const std::string& command) {
+  using J = ordered_json;
+  if (command == "sweep") {
+    const J& scenes = field(p, p.json, "", "scenes", &J::is_array, "an array");
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+      const std::string at = "scenes[" + std::to_string(s) + "]";
+      if (!scenes[s].is_object())
+        throw InputError(p.file + ": " + at + ": should be an object, got " +
+                         scenes[s].type_name());
+      const J& points = field(p, scenes[s], at, "points", &J::is_array, "an array");
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        const std::string pt = at + ".points[" + std::to_string(k) + "]";
+        if (!points[k].is_object())
+          throw InputError(p.file + ": " + pt + ": should be an object, got " +
+                           points[k].type_name());
+        field(p, points[k], pt, "engine", &J::is_string, "a string");
+        field(p, points[k], pt, "ms_per_step", &J::is_number, "a number");
+        const J& error =
+            field(p, points[k], pt, "final_position_error", &J::is_object, "an object");
+        if (const auto rms = error.find("rms");
+            rms == error.end() || !(rms->is_number() || rms->is_null()))
+          throw InputError(p.file + ": " + pt +
+                           ".final_position_error.rms: should be a number or null");
+        if (points[k].contains("verdict"))
+          field(p, points[k], pt, "verdict", &J::is_string, "a string");
+      }
+    }
+  } else {
+    const J& cases = field(p, p.json, "", "cases", &J::is_array, "an array");
+    for (std::size_t c = 0; c < cases.size(); ++c) {
+      const std::string at = "cases[" + std::to_string(c) + "]";
+      if (!cases[c].is_object())
+        throw InputError(p.file + ": " + at + ": should be an object, got " + cases[c].type_name());
+      field(p, cases[c], at, "case", &J::is_string, "a string");
+      field(p, cases[c], at, "engine", &J::is_string, "a string");
+      field(p, cases[c], at, "verdict", &J::is_string, "a string");
+      field(p, cases[c], at, "fatal", &J::is_boolean, "true or false");
+    }
+  }
+}
+
 Block read_block(const ShardPart& p) {
   const ordered_json& j = p.json;
   if (!j.is_object() || !j.contains("shard")) {
@@ -29,6 +85,19 @@ Block read_block(const ShardPart& p) {
                      "without --shard K/N?)");
   }
   const ordered_json& s = j["shard"];
+  if (!s.is_object())
+    throw InputError(p.file + ": shard: should be an object, got " + std::string(s.type_name()));
+  using J = ordered_json;
+  field(p, s, "shard", "command", &J::is_string, "a string");
+  field(p, s, "shard", "version", &J::is_string, "a string");
+  field(p, s, "shard", "grid", &J::is_string, "a string");
+  for (const char* key : {"index", "count", "units"})
+    field(p, s, "shard", key, &J::is_number_integer, "a whole number");
+  for (const J& u : field(p, s, "shard", "ran", &J::is_array, "an array")) {
+    if (!u.is_number_unsigned() && !(u.is_number_integer() && u.get<long long>() >= 0))
+      throw InputError(p.file + ": shard.ran: should hold whole numbers, got " +
+                       std::string(u.type_name()));
+  }
   Block b;
   try {
     b.command = s.at("command").get<std::string>();
@@ -45,6 +114,7 @@ Block read_block(const ShardPart& p) {
   if (schema != "chainbench." + b.command + "/1" || (b.command != "sweep" && b.command != "stress"))
     throw InputError(p.file + ": a part of \"" + b.command + "\" with schema \"" + schema +
                      "\": only sweep and stress parts merge");
+  check_results(p, b.command);
   if (b.count < 1 || b.index < 1 || b.index > b.count)
     throw InputError(p.file + ": shard " + std::to_string(b.index) + "/" + std::to_string(b.count) +
                      " is not a part of its whole");

@@ -11,7 +11,7 @@ namespace chainbench {
 namespace {
 
 std::string range(const SceneParam& p) {
-  return "[" + fmt_g(p.min, 6) + ", " + fmt_g(p.max, 6) + "]" + (p.integer ? " whole" : "");
+  return "[" + fmt_exact(p.min) + ", " + fmt_exact(p.max) + "]" + (p.integer ? " whole" : "");
 }
 
 int list_scenes() {
@@ -25,8 +25,8 @@ int list_scenes() {
     std::cout << "  " << r.name << ": " << r.description << "\n";
     TextTable t({"    key", "default", "range", "meaning"});
     for (const SceneParam& p : r.params)
-      t.add({"    " + p.key, fmt_g(p.value, 6), range(p), p.help});
-    t.add({"    steps", std::to_string(r.steps), "[1, 1e+07] whole", "steps to run"});
+      t.add({"    " + p.key, fmt_exact(p.value), range(p), p.help});
+    t.add({"    steps", std::to_string(r.steps), "[1, 10000000] whole", "steps to run"});
     t.print(std::cout);
   }
   std::cout

@@ -3,6 +3,7 @@
 #include "input_error.h"
 #include "merge.h"
 #include "output_file.h"
+#include "value_checks.h"
 
 #include <filesystem>
 #include <fstream>
@@ -61,7 +62,8 @@ void add_merge_command(CLI::App& app, int* status) {
       "merge", "Join the JSON parts of a sharded sweep or stress run (--shard K/N) into one");
   m->add_option("files", args->files, "the parts' JSON files, every part once, in any order")
       ->required();
-  m->add_option("--json", args->json, "write the joined JSON here (default: standard output)");
+  m->add_option("--json", args->json, "write the joined JSON here (default: standard output)")
+      ->check(non_empty_path("output file"));
   m->footer(
       "The joined JSON is what the unsharded command writes, point for point (timings are each "
       "part's own; a sweep's Pareto marks are computed again over the whole).\nExit status: 0 "

@@ -18,7 +18,8 @@ void add_replay_command(CLI::App& app, int* status) {
   CLI::App* r = app.add_subcommand(
       "replay", "Write one self-contained HTML page that plays every engine's run of a scene");
   auto* scene = r->add_option("--scene", args->scene, "built-in scene (chainbench list)");
-  auto* file = r->add_option("--scene-file", args->scene_file, "scene file (JSON, schema 1)");
+  auto* file = r->add_option("--scene-file", args->scene_file, "scene file (JSON, schema 1)")
+                   ->check(non_empty_path("scene file"));
   scene->excludes(file);
   r->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
   r->add_option("--engines", args->engines,
@@ -29,8 +30,10 @@ void add_replay_command(CLI::App& app, int* status) {
                 "engine the chart measures the others from, or none; default: " +
                     default_reference().label());
   r->add_option("--steps", args->steps, "steps to run instead of the scene's")
-      ->check(whole_number_in(1, 10'000'000));
-  r->add_option("--out", args->replay, "the page to write (HTML)")->required();
+      ->transform(whole_number_in(1, 10'000'000));
+  r->add_option("--out", args->replay, "the page to write (HTML)")
+      ->required()
+      ->check(non_empty_path("output file"));
   r->add_option("--max-mb", args->replay_mb,
                 "size limit: beyond it only one step in k keeps its positions")
       ->capture_default_str()

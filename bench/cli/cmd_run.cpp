@@ -169,7 +169,8 @@ void add_run_command(CLI::App& app, int* status) {
   CLI::App* run_app =
       app.add_subcommand("run", "Run one scene in several engines and compare them");
   auto* scene = run_app->add_option("--scene", args->scene, "built-in scene (chainbench list)");
-  auto* file = run_app->add_option("--scene-file", args->scene_file, "scene file (JSON, schema 1)");
+  auto* file = run_app->add_option("--scene-file", args->scene_file, "scene file (JSON, schema 1)")
+                   ->check(non_empty_path("scene file"));
   scene->excludes(file);
   run_app->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
   run_app
@@ -181,15 +182,22 @@ void add_run_command(CLI::App& app, int* status) {
       "--reference", args->reference,
       "engine the others are compared with, or none; default: " + default_reference().label());
   run_app->add_option("--steps", args->steps, "steps to run instead of the scene's")
-      ->check(whole_number_in(1, 10'000'000));
-  run_app->add_option("--json", args->json, "write the chainbench.run/1 JSON here");
-  run_app->add_option("--csv", args->csv, "write one CSV row per engine here");
-  run_app->add_option("--trace", args->trace,
-                      "write every body's state after every step here (CSV)");
-  run_app->add_option("--replay", args->replay,
-                      "write a page that plays every engine's run here (HTML, self-contained)");
+      ->transform(whole_number_in(1, 10'000'000));
+  run_app->add_option("--json", args->json, "write the chainbench.run/1 JSON here")
+      ->check(non_empty_path("output file"));
+  run_app->add_option("--csv", args->csv, "write one CSV row per engine here")
+      ->check(non_empty_path("output file"));
+  run_app
+      ->add_option("--trace", args->trace, "write every body's state after every step here (CSV)")
+      ->check(non_empty_path("output file"));
+  auto* replay = run_app
+                     ->add_option("--replay", args->replay,
+                                  "write a page that plays every engine's run here (HTML, "
+                                  "self-contained)")
+                     ->check(non_empty_path("output file"));
   run_app->add_option("--replay-mb", args->replay_mb, "the replay page's size limit, MB")
       ->capture_default_str()
+      ->needs(replay)
       ->check(number_in(0.1, 10000.0));
   run_app
       ->add_option("--metrics", args->metrics,
@@ -204,6 +212,10 @@ void add_run_command(CLI::App& app, int* status) {
   run_app->callback([args, status, scene, file] {
     if (scene->count() == 0 && file->count() == 0)
       throw InputError("run: give --scene NAME or --scene-file FILE");
+    refuse_shared_outputs({{"--json", &args->json},
+                           {"--csv", &args->csv},
+                           {"--trace", &args->trace},
+                           {"--replay", &args->replay}});
     *status = run_scene(*args);
   });
 }

@@ -1,6 +1,5 @@
 // chainbench stress: the stiff and extreme cases, in every engine, with verdicts.
 #include "commands.h"
-#include "value_checks.h"
 #include "engine_choice.h"
 #include "input_error.h"
 #include "output_file.h"
@@ -9,6 +8,7 @@
 #include "scene_library.h"
 #include "shard.h"
 #include "stress.h"
+#include "value_checks.h"
 
 #include <algorithm>
 #include <exception>
@@ -135,7 +135,8 @@ void add_stress_command(CLI::App& app, int* status) {
   s->add_option("--timeout", args->timeout, "seconds a case may take before it counts as a hang")
       ->capture_default_str()
       ->check(number_in(1.0, 86400.0));
-  s->add_option("--json", args->json, "write the chainbench.stress/1 JSON here");
+  s->add_option("--json", args->json, "write the chainbench.stress/1 JSON here")
+      ->check(non_empty_path("output file"));
   s->add_option("--shard", args->shard,
                 "K/N: run the K-th of N parts of the matrix (runs K, K+N, ...); chainbench merge "
                 "joins the parts' JSON");

@@ -1,6 +1,5 @@
 // chainbench sweep: error against run time over a grid of engine settings.
 #include "commands.h"
-#include "value_checks.h"
 #include "input_error.h"
 #include "output_file.h"
 #include "progress.h"
@@ -9,7 +8,9 @@
 #include "scene_library.h"
 #include "shard.h"
 #include "sweep.h"
+#include "value_checks.h"
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <iostream>
@@ -52,9 +53,13 @@ int run(const SweepArgs& a) {
   if (scenes.empty())
     throw InputError("sweep: give --scene NAME or --scene-file FILE (repeatable)");
   std::vector<EngineSpec> grid;
+  // A point given twice would be run and reported twice: refuse it, as run's --engines does.
   for (const std::string& g : a.grids) {
-    for (EngineSpec& s : parse_grid(g))
+    for (EngineSpec& s : parse_grid(g)) {
+      if (std::find(grid.begin(), grid.end(), s) != grid.end())
+        throw InputError("--grid: point " + s.label() + " given twice");
       grid.push_back(std::move(s));
+    }
   }
   const bool given = !grid.empty();
   if (!given) grid = default_sweep_grid();
@@ -149,7 +154,8 @@ void add_sweep_command(CLI::App& app, int* status) {
   CLI::App* sweep_app =
       app.add_subcommand("sweep", "Error against run time over a grid of engine settings");
   sweep_app->add_option("--scene", args->scenes, "built-in scene (repeatable)");
-  sweep_app->add_option("--scene-file", args->scene_files, "scene file (repeatable)");
+  sweep_app->add_option("--scene-file", args->scene_files, "scene file (repeatable)")
+      ->check(non_empty_path("scene file"));
   sweep_app->add_option("--set", args->sets, "KEY=VALUE for every built-in scene (repeatable)");
   sweep_app->add_option("--grid", args->grids,
                         "NAME:key=v1,v2;key=v3,... every combination (repeatable); "
@@ -160,13 +166,18 @@ void add_sweep_command(CLI::App& app, int* status) {
       "default: " +
           accurate_reference().label());
   sweep_app->add_option("--steps", args->steps, "steps to run instead of each scene's")
-      ->check(whole_number_in(1, 10'000'000));
-  sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here");
-  sweep_app->add_option("--csv", args->csv, "write one CSV row per point here");
+      ->transform(whole_number_in(1, 10'000'000));
+  sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here")
+      ->check(non_empty_path("output file"));
+  sweep_app->add_option("--csv", args->csv, "write one CSV row per point here")
+      ->check(non_empty_path("output file"));
   sweep_app->add_option("--shard", args->shard,
                         "K/N: run the K-th of N parts of the grid (points K, K+N, ...); "
                         "chainbench merge joins the parts' JSON");
-  sweep_app->callback([args, status] { *status = run(*args); });
+  sweep_app->callback([args, status] {
+    refuse_shared_outputs({{"--json", &args->json}, {"--csv", &args->csv}});
+    *status = run(*args);
+  });
 }
 
 }  // namespace chainbench

@@ -11,12 +11,13 @@
 
 #include <exception>
 #include <iostream>
+#include <regex>
 #include <string>
 
 int main(int argc, char** argv) {
   CLI::App app{"chainbench: collision chaining against rigid-body engines, in numbers"};
   app.require_subcommand(1);
-  app.set_help_all_flag("--help-all", "every subcommand's help");
+  app.set_help_all_flag("--help-all", "this help and every command's help");
   app.set_version_flag("--version", "chainbench " CHAINBENCH_VERSION);
   int status = 0;
   chainbench::add_list_commands(app, &status);
@@ -25,10 +26,33 @@ int main(int argc, char** argv) {
   chainbench::add_stress_command(app, &status);
   chainbench::add_replay_command(app, &status);
   chainbench::add_merge_command(app, &status);
+  // Each command inherits --help-all, but has no commands below it: there it prints what --help
+  // does, and says so.
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+    sub->set_help_all_flag("--help-all",
+                           "this command's help, as --help (chainbench --help-all: every "
+                           "command's help)");
   // Every message of ours starts with the command's name; so do CLI11's.
+  // CLI11 says "--scene: At Most 1 required but received 2" of an option given twice: say so.
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return std::string("chainbench: ") + e.what() + "\n(--help, or COMMAND --help, says more)\n";
+    std::string what = e.what();
+    static const std::regex at_most("(.*): At Most 1 required but received ([0-9]+)");
+    if (std::smatch m; std::regex_match(what, m, at_most))
+      what = m[1].str() + " given " + m[2].str() + " times; give it once";
+    return "chainbench: " + what + "\n(--help, or COMMAND --help, says more)\n";
   });
+  // Nor would it name an option it did not know before the command.
+  if (argc > 1 && argv[1][0] == '-') {
+    const std::string first = argv[1];
+    if (first != "--help" && first != "-h" && first != "--help-all" && first != "--version") {
+      std::string known;
+      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        known += (known.empty() ? "" : ", ") + sub->get_name();
+      std::cerr << "chainbench: unknown option " << first << " (commands: " << known
+                << "; options before a command: --help, --help-all, --version)\n";
+      return 2;
+    }
+  }
   // CLI11 would say only that a subcommand is required: name the word it did not know.
   if (argc > 1 && argv[1][0] != '-') {
     std::string known;

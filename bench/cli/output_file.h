@@ -4,9 +4,11 @@
 #pragma once
 
 #include <fstream>
+#include <initializer_list>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace chainbench {
 
@@ -19,6 +21,10 @@ class OutputError : public std::runtime_error {
 // The file at `path`, emptied, or null if `path` is empty; InputError ("<option>: cannot write
 // <path>") if it cannot be opened.
 std::unique_ptr<std::ofstream> open_output(const std::string& path, const char* option);
+// InputError if two of the outputs (option, path; empty paths are not given) name the same file:
+// the second would overwrite the first.
+void refuse_shared_outputs(
+    std::initializer_list<std::pair<const char*, const std::string*>> outputs);
 // Flushes `out` (if any); OutputError naming `path` if not everything was written.
 void finish_output(std::ofstream* out, const std::string& path);
 

@@ -13,7 +13,9 @@
 
 namespace chainbench {
 
-// A whole number in [lo, hi].
+// A whole number in [lo, hi], written in any form whose value is whole ("1000", "1e3",
+// "1000.0"); the text is rewritten to the integer, since CLI11 converts it after this check:
+// give it with ->transform(), as ->check() keeps the text as typed.
 inline CLI::Validator whole_number_in(std::int64_t lo, std::int64_t hi) {
   const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   return CLI::Validator(
@@ -21,13 +23,33 @@ inline CLI::Validator whole_number_in(std::int64_t lo, std::int64_t hi) {
         std::int64_t v = 0;
         const char* end = text.data() + text.size();
         const auto [at, ec] = std::from_chars(text.data(), end, v);
-        if (text.empty() || at != end || ec == std::errc::invalid_argument)
-          return "\"" + text + "\" is not a whole number";
-        if (ec == std::errc::result_out_of_range || v < lo || v > hi)
+        if (!text.empty() && at == end && ec == std::errc::result_out_of_range)
           return text + " is outside " + range;
+        if (text.empty() || at != end || ec != std::errc()) {
+          double d = 0.0;
+          const auto [dat, dec] = std::from_chars(text.data(), end, d);
+          if (text.empty() || dat != end || dec == std::errc::invalid_argument ||
+              !std::isfinite(d) || d != std::floor(d))
+            return "\"" + text + "\" is not a whole number";
+          if (dec == std::errc::result_out_of_range || d < static_cast<double>(lo) ||
+              d > static_cast<double>(hi))
+            return text + " is outside " + range;
+          v = static_cast<std::int64_t>(d);
+          text = std::to_string(v);
+        }
+        if (v < lo || v > hi) return text + " is outside " + range;
         return {};
       },
       range);
+}
+
+// A path that is not empty: an empty one would otherwise be taken as "not given" further on.
+inline CLI::Validator non_empty_path(const std::string& what) {
+  return CLI::Validator(
+      [what](std::string& text) -> std::string {
+        return text.empty() ? "the " + what + " path is empty" : std::string();
+      },
+      "");
 }
 
 // A finite number in [lo, hi].

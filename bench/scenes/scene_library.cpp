@@ -11,7 +11,7 @@ namespace chainbench {
 namespace {
 
 std::string num(double v) {
-  return fmt_g(v, 6);  // as %g: every digit a user could have typed in a range
+  return fmt_exact(v);  // every digit: a rounded value could look equal to its bound
 }
 
 }  // namespace

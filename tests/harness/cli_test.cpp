@@ -137,7 +137,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"run --scene stack --engines chain --require box2d",
                 "--require box2d: not among the engines run (chain)"},
         BadCall{"run --scene stack --require chain:colour=3", "unknown key"},
-        BadCall{"run --scene stack --json /nonexistent/dir/out.json", "cannot write"},
+        BadCall{"run --scene stack --json /nonexistent/dir/out.json",
+                "--json: cannot write /nonexistent/dir/out.json: no such directory "
+                "/nonexistent/dir"},
+        BadCall{"run --scene stack --csv /tmp", "--csv: cannot write /tmp: is a directory"},
+        BadCall{"run --scene stack --trace /nonexistent/t.csv",
+                "--trace: cannot write /nonexistent/t.csv: no such directory"},
+        BadCall{"replay --scene stack --out /nonexistent/x.html", "no such directory"},
         BadCall{"run --scene stack --json -", "give a file name"},
         BadCall{"run --scene stack --set n=abc", "\"abc\" is not a number"},
         BadCall{"run --scene stack --set n=2.5", "whole number"},
@@ -172,6 +178,32 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"run --scene stack --steps 0", "--steps: 0 is outside [1, 10000000]"},
         BadCall{"run --scene stack --replay-mb x", "--replay-mb: \"x\" is not a number"},
         BadCall{"stress --timeout nan", "--timeout: nan is outside [1, 86400]"},
+        BadCall{"run --scene random_pile --set seed=2147483648",
+                "2147483648 is out of range [0, 2147483647]"},
+        BadCall{"run --scene-file ''", "--scene-file: the scene file path is empty"},
+        BadCall{"sweep --scene-file ''", "--scene-file: the scene file path is empty"},
+        BadCall{"replay --scene-file '' --out /tmp/x.html",
+                "--scene-file: the scene file path is empty"},
+        BadCall{"--frob", "chainbench: unknown option --frob (commands: list, "},
+        BadCall{"run --scene stack --scene pyramid", "--scene given 2 times; give it once"},
+        BadCall{"run --scene stack --json /tmp/cb_same --csv /tmp/cb_same",
+                "--json and --csv both name /tmp/cb_same: give each output its own file"},
+        BadCall{"run --scene stack --trace /tmp/cb_same --replay /tmp/../tmp/cb_same",
+                "--trace and --replay both name"},
+        BadCall{"sweep --scene stack --json /tmp/cb_same --csv /tmp/cb_same", "both name"},
+        BadCall{"run --scene stack --json ''", "--json: the output file path is empty"},
+        BadCall{"run --scene stack --replay ''", "--replay: the output file path is empty"},
+        BadCall{"sweep --scene stack --csv ''", "--csv: the output file path is empty"},
+        BadCall{"stress --quick --json ''", "--json: the output file path is empty"},
+        BadCall{"replay --scene stack --out ''", "--out: the output file path is empty"},
+        BadCall{"merge /tmp/x.json --json ''", "--json: the output file path is empty"},
+        BadCall{"run --scene stack --replay-mb 5", "--replay-mb requires --replay"},
+        BadCall{"sweep --scene stack --grid chain:passes=1,1", "--grid: point "},
+        BadCall{"sweep --scene stack --grid chain:passes=1 --grid chain:passes=1", "given twice"},
+        BadCall{"run --scene stack --steps 1e3 --set steps=5", "--steps sets it too"},
+        BadCall{"run --scene stack --steps 1e8", "--steps: 1e8 is outside [1, 10000000]"},
+        BadCall{"run --scene stack --steps nan", "--steps: \"nan\" is not a whole number"},
+        BadCall{"run --scene stack --steps ''", "--steps"},
         BadCall{"run --scene stack --bogus",
                 "chainbench: The following argument was not expected"}),
     [](const auto& info) { return "Case" + std::to_string(info.index); });
@@ -206,6 +238,16 @@ TEST(Cli, ASceneFileLargerThanAnySceneNeedsIsRefused) {
   std::filesystem::remove(path);
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(path + ": larger than 2 GB"), std::string::npos) << r.out;
+}
+
+// --steps takes a whole number in any form, as --set does: 1e1 is ten steps.
+TEST(Cli, StepsTakesAWholeNumberWrittenInAnyForm) {
+  for (const char* steps : {"1e1", "10.0", "10"}) {
+    const Result r = chainbench(std::string("run --scene stack --engines chain --reference none "
+                                            "--steps ") +
+                                steps);
+    EXPECT_EQ(r.status, 0) << steps << ": " << r.out;
+  }
 }
 
 TEST(Cli, VersionIsPrinted) {
@@ -304,6 +346,10 @@ TEST(Cli, ListAndEnginesDescribeWhatCanRun) {
         "seed_squeeze", "seed_falling_row"}) {
     EXPECT_NE(list.out.find(std::string("  ") + scene + ": "), std::string::npos) << scene;
   }
+  // Ranges in full: a rounded bound would look equal to a value just past it.
+  EXPECT_NE(list.out.find("[0, 2147483647] whole"), std::string::npos) << list.out;
+  EXPECT_NE(list.out.find("[1, 10000000] whole"), std::string::npos) << list.out;
+  EXPECT_EQ(list.out.find("e+0"), std::string::npos) << list.out;
   const Result engines = chainbench("engines");
   EXPECT_EQ(engines.status, 0);
   EXPECT_NE(engines.out.find("chain:variant=modern,velocity=inelastic"), std::string::npos)
@@ -313,6 +359,14 @@ TEST(Cli, ListAndEnginesDescribeWhatCanRun) {
   }
   EXPECT_NE(engines.out.find("vel_iters"), std::string::npos);
   EXPECT_EQ(chainbench("--help").status, 0);
+  EXPECT_EQ(chainbench("-h").status, 0);
+  EXPECT_EQ(chainbench("--help-all").status, 0);
+  // A command's --help-all says that it prints that command's help only.
+  const Result run_help = chainbench("run --help");
+  EXPECT_NE(run_help.out.find("this command's help, as --help"), std::string::npos) << run_help.out;
+  const Result run_all = chainbench("run --help-all");
+  EXPECT_EQ(run_all.status, 0);
+  EXPECT_NE(run_all.out.find("--scene-file"), std::string::npos) << run_all.out;
 }
 
 // The example scene files load, run in every default engine, and the modern solver lands where
@@ -474,3 +528,30 @@ TEST(Cli, PluginFaultsExitTwoWithTheirReason) {
 }
 
 }  // namespace
+
+// merge checks the form of each part's results and shard block, naming file, field and reason,
+// rather than failing on a JSON type error or merging a point it cannot read.
+TEST(Cli, MergeNamesAMalformedPartsFieldAndWhy) {
+  const std::string part = ::testing::TempDir() + "cb_merge_part.json";
+  const Result ran =
+      chainbench("sweep --scene stack --grid chain:passes=1,2 --shard 1/2 --json " + part);
+  ASSERT_EQ(ran.status, 0) << ran.out;
+  nlohmann::ordered_json good;
+  std::ifstream(part) >> good;
+  auto refused = [&](nlohmann::ordered_json bad, const std::string& message) {
+    const std::string path = ::testing::TempDir() + "cb_merge_bad.json";
+    std::ofstream(path) << bad.dump();
+    const Result r = chainbench("merge " + path);
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find(path + ": " + message), std::string::npos) << r.out;
+  };
+  nlohmann::ordered_json bogus_point = good;
+  bogus_point["scenes"][0]["points"][0] = {{"bogus", 1}};
+  refused(bogus_point, "scenes[0].points[0].engine: missing (should be a string)");
+  nlohmann::ordered_json string_shard = good;
+  string_shard["shard"] = "1/2";
+  refused(string_shard, "shard: should be an object, got string");
+  nlohmann::ordered_json bad_index = good;
+  bad_index["shard"]["index"] = "one";
+  refused(bad_index, "shard.index: should be a whole number, got string");
+}

@@ -204,8 +204,9 @@ TEST(Determinism, CopiedWorldContinuesIdentically) {
   }
 }
 
-// docs/algorithm-2014.md Quirk 2 (§3.5): a body squeezed between two statics ends inside one of them, and
-// which one depends on the order the pairs are met. Modern centres it, whatever the order.
+// docs/algorithm-2014.md Quirk 2 (§3.5): a body squeezed between two statics ends inside one of
+// them, and which one depends on the order the pairs are met. Modern centres it, whatever the
+// order.
 TEST(Determinism, SqueezeOutcomeDependsOnCreationOrderOnlyInSeed2014) {
   const std::vector<BodyDef> defs = {static_box(0.0, -1.0, 5.0, 1.0),  // floor, top at 0
                                      static_box(0.0, 1.8, 5.0, 1.0),   // ceiling, bottom at 0.8

@@ -42,8 +42,9 @@ TEST(Seed2014, TouchingIsNotPushing) {
   }
 }
 
-// docs/algorithm-2014.md §2.5, Quirk 4 (example §3.6): every dynamic body takes its turn as `a`, so each dynamic pair is met twice; a
-// fresh overlap between two free boxes is split evenly either way.
+// docs/algorithm-2014.md §2.5, Quirk 4 (example §3.6): every dynamic body takes its turn as `a`, so
+// each dynamic pair is met twice; a fresh overlap between two free boxes is split evenly either
+// way.
 TEST(Seed2014, EqualMassesSplitAnOverlapEvenly) {
   World w(world_def(Variant::kSeed2014, VelocityRule::kZero, {0.0, 0.0}));
   const BodyId a = w.create_body(dynamic_box(0.0, 0.0));
@@ -53,8 +54,9 @@ TEST(Seed2014, EqualMassesSplitAnOverlapEvenly) {
   EXPECT_FLOAT_EQ(w.position(b).x, 0.9);
 }
 
-// docs/algorithm-2014.md Quirk 3 (§3.7): the grid is built once per step and never updated. A body pushed further than the
-// grid's reach during the step is not met by the bodies near its new place until next step.
+// docs/algorithm-2014.md Quirk 3 (§3.7): the grid is built once per step and never updated. A body
+// pushed further than the grid's reach during the step is not met by the bodies near its new place
+// until next step.
 TEST(Seed2014, StaleGridMissesPairsCreatedByALongPush) {
   auto overlap_after_one_step = [](Variant v) {
     World w(world_def(v, VelocityRule::kZero, {0.0, 0.0}));

@@ -1,5 +1,5 @@
-// The worked examples of the 2014 design (docs/algorithm-2014.md §3; conversions §1), converted from
-// px/frame to metres and seconds, checked in both variants unless the example is modern-only.
+// The worked examples of the 2014 design (docs/algorithm-2014.md §3; conversions §1), converted
+// from px/frame to metres and seconds, checked in both variants unless the example is modern-only.
 #include "world_helpers.h"
 
 #include <gtest/gtest.h>
@@ -18,7 +18,8 @@ INSTANTIATE_TEST_SUITE_P(Solver, BothVariants,
                          [](const auto& info) { return variant_name(info.param); });
 
 // docs/algorithm-2014.md §3.1: a player at +4 pushing two touching boxes of equal mass moves the
-// three together, each by 4/3. With the zero rule the push repeats every step, so each body advances v*dt/3.
+// three together, each by 4/3. With the zero rule the push repeats every step, so each body
+// advances v*dt/3.
 TEST_P(BothVariants, DrivenPusherMovesTwoTouchingBoxesAThirdOfItsStepEach) {
   World w(world_def(GetParam(), VelocityRule::kZero, {0.0, 0.0}));
   const double v = 2.0;
@@ -60,9 +61,10 @@ TEST_P(BothVariants, RowAgainstStaticWallDoesNotMove) {
   }
 }
 
-// docs/algorithm-2014.md §3.3, the chaining axis: a box resting on the floor and pushed sideways keeps its resting contact
-// out of the push. Were the floor contact chained sideways, the box would act as a wall and the
-// pusher would take the whole push (mass ignored); instead the push splits by mass every step.
+// docs/algorithm-2014.md §3.3, the chaining axis: a box resting on the floor and pushed sideways
+// keeps its resting contact out of the push. Were the floor contact chained sideways, the box would
+// act as a wall and the pusher would take the whole push (mass ignored); instead the push splits by
+// mass every step.
 TEST_P(BothVariants, RestingContactIsNotResolvedSideways) {
   World w(world_def(GetParam(), VelocityRule::kZero));
   add_floor(w);

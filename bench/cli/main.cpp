@@ -45,28 +45,24 @@ int main(int argc, char** argv) {
     }
     return "chainbench: " + what + "\n(--help, or COMMAND --help, says more)\n";
   });
-  // Nor would it name an option it did not know before the command.
-  if (argc > 1 && argv[1][0] == '-') {
+  // CLI11 would say only that a subcommand is required: name the word or option it did not know
+  // before the command.
+  if (argc > 1) {
     const std::string first = argv[1];
-    if (first != "--help" && first != "-h" && first != "--help-all" && first != "--version") {
-      std::string known;
-      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
-        known += (known.empty() ? "" : ", ") + sub->get_name();
+    std::string known;
+    bool found = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      found = found || sub->check_name(first);
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (first[0] == '-' && first != "--help" && first != "-h" && first != "--help-all" &&
+        first != "--version") {
       std::cerr << "chainbench: unknown option " << first << " (commands: " << known
                 << "; options before a command: --help, --help-all, --version)\n";
       return 2;
     }
-  }
-  // CLI11 would say only that a subcommand is required: name the word it did not know.
-  if (argc > 1 && argv[1][0] != '-') {
-    std::string known;
-    bool found = false;
-    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-      found = found || sub->check_name(argv[1]);
-      known += (known.empty() ? "" : ", ") + sub->get_name();
-    }
-    if (!found) {
-      std::cerr << "chainbench: unknown command \"" << argv[1] << "\" (commands: " << known
+    if (first[0] != '-' && !found) {
+      std::cerr << "chainbench: unknown command \"" << first << "\" (commands: " << known
                 << "; --help says more)\n";
       return 2;
     }

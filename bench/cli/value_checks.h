@@ -20,24 +20,17 @@ inline CLI::Validator whole_number_in(std::int64_t lo, std::int64_t hi) {
   const std::string range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   return CLI::Validator(
       [lo, hi, range](std::string& text) -> std::string {
-        std::int64_t v = 0;
+        // Read as a double: every whole number of the ranges used (up to 1e7) is exact in one.
+        double v = 0.0;
         const char* end = text.data() + text.size();
         const auto [at, ec] = std::from_chars(text.data(), end, v);
-        if (!text.empty() && at == end && ec == std::errc::result_out_of_range)
+        if (text.empty() || at != end || ec == std::errc::invalid_argument || std::isnan(v) ||
+            (std::isfinite(v) && v != std::floor(v)))
+          return "\"" + text + "\" is not a whole number";
+        if (ec == std::errc::result_out_of_range || v < static_cast<double>(lo) ||
+            v > static_cast<double>(hi))
           return text + " is outside " + range;
-        if (text.empty() || at != end || ec != std::errc()) {
-          double d = 0.0;
-          const auto [dat, dec] = std::from_chars(text.data(), end, d);
-          if (text.empty() || dat != end || dec == std::errc::invalid_argument ||
-              !std::isfinite(d) || d != std::floor(d))
-            return "\"" + text + "\" is not a whole number";
-          if (dec == std::errc::result_out_of_range || d < static_cast<double>(lo) ||
-              d > static_cast<double>(hi))
-            return text + " is outside " + range;
-          v = static_cast<std::int64_t>(d);
-          text = std::to_string(v);
-        }
-        if (v < lo || v > hi) return text + " is outside " + range;
+        text = std::to_string(static_cast<std::int64_t>(v));
         return {};
       },
       range);

@@ -119,8 +119,12 @@ void mark_pareto(std::vector<SweepPoint>& points) {
   }
 }
 
+std::string sweep_scene_label(const SweepResult& r) {
+  return r.variant ? r.scene + " (" + r.variant->key + "=" + r.variant->text + ")" : r.scene;
+}
+
 void print_sweep_table(std::ostream& out, const SweepResult& r) {
-  out << "scene " << r.scene << ": " << r.bodies << " bodies, " << r.steps
+  out << "scene " << sweep_scene_label(r) << ": " << r.bodies << " bodies, " << r.steps
       << " steps; error against "
       << (r.reference == "expect" ? "the scene's expectations" : r.reference_label)
       << (r.interrupted ? " (interrupted: the points measured so far)" : "") << "\n\n";
@@ -145,6 +149,10 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
   for (const SweepResult& r : results) {
     ordered_json s;
     s["scene"] = {{"name", r.scene}, {"bodies", r.bodies}, {"steps", r.steps}};
+    if (r.variant) {
+      s["scene"]["vary"] = {
+          {"key", r.variant->key}, {"text", r.variant->text}, {"value", r.variant->value}};
+    }
     s["reference"] = r.reference;
     s["reference_label"] = r.reference == "expect" ? r.reference : r.reference_label;
     if (r.reference_run) s["reference_ms_per_step"] = r.reference_run->timing.median_ms;
@@ -177,7 +185,7 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
 
 void write_sweep_csv(std::ostream& out, const std::vector<SweepResult>& results) {
   out << "scene,engine,reference,ms_median,err_max,err_rms,efd_per_body_step,max_penetration,"
-         "stable,pareto\n";
+         "stable,pareto,vary\n";
   for (const SweepResult& r : results) {
     for (const SweepPoint& p : r.points) {
       const Metrics& m = p.run.metrics;
@@ -187,7 +195,8 @@ void write_sweep_csv(std::ostream& out, const std::vector<SweepResult>& results)
           << fmt_g(p.error.rms, 9) << ','
           << (m.efd_per_body_step ? fmt_g(*m.efd_per_body_step, 9) : "") << ','
           << (m.max_penetration ? fmt_g(*m.max_penetration, 9) : "") << ','
-          << (stable ? (*stable ? "1" : "0") : "") << ',' << (p.pareto ? 1 : 0) << '\n';
+          << (stable ? (*stable ? "1" : "0") : "") << ',' << (p.pareto ? 1 : 0) << ','
+          << (r.variant ? r.variant->key + "=" + r.variant->text : "") << '\n';
     }
   }
 }

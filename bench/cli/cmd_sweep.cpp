@@ -6,6 +6,7 @@
 #include "registry.h"
 #include "scene_file.h"
 #include "scene_library.h"
+#include "scene_vary.h"
 #include "shard.h"
 #include "sweep.h"
 #include "value_checks.h"
@@ -31,15 +32,35 @@ struct SweepArgs {
   int steps = 0;
   std::string json, csv;
   std::string shard;  // "K/N", or empty: the whole grid
+  std::string vary;   // "KEY=v1,v2,...": each built-in scene once per value
 };
 
 int run(const SweepArgs& a) {
   // Everything the user typed is checked before anything runs.
   std::vector<Scene> scenes;
+  std::vector<std::optional<SweepVariant>> variants;  // per scene: its --vary value
   std::vector<std::string> sets = a.sets, notes;
   if (a.steps > 0) sets.push_back("steps=" + std::to_string(a.steps));
-  for (const std::string& name : a.scenes)
-    scenes.push_back(make_scene(name, sets));
+  if (!a.vary.empty()) {
+    if (a.scenes.empty()) throw InputError("--vary applies to built-in scenes: give --scene NAME");
+    if (!a.scene_files.empty())
+      throw InputError("--vary applies to built-in scenes, not --scene-file");
+    const SceneVary vary = parse_vary(a.vary);
+    for (const std::string& name : a.scenes) {
+      for (std::size_t k = 0; k < vary.values.size(); ++k) {
+        scenes.push_back(make_varied_scene(name, sets, vary, k));
+        variants.push_back(SweepVariant{vary.key, vary.texts[k], vary.values[k]});
+      }
+    }
+    if (vary.key == "dt" && a.steps == 0) {
+      notes.push_back(
+          "--vary dt: each run lasts as long as the scene's default run at 1/60 s "
+          "(steps = default steps / 60 / dt)");
+    }
+  } else {
+    for (const std::string& name : a.scenes)
+      scenes.push_back(make_scene(name, sets));
+  }
   if (!a.scene_files.empty() && !a.sets.empty() && a.scenes.empty()) {
     throw InputError("--set applies to built-in scenes, not --scene-file");
   }
@@ -50,6 +71,7 @@ int run(const SweepArgs& a) {
         notes.push_back(std::move(note));
     }
   }
+  variants.resize(scenes.size());
   if (scenes.empty())
     throw InputError("sweep: give --scene NAME or --scene-file FILE (repeatable)");
   std::vector<EngineSpec> grid;
@@ -106,13 +128,17 @@ int run(const SweepArgs& a) {
   Progress progress;
   std::vector<SweepResult> results;
   for (const Scene& scene : scenes) {
+    const std::size_t k = static_cast<std::size_t>(&scene - scenes.data());
     SweepOptions options;
     options.stop = &g_stop;
-    options.include = include[&scene - scenes.data()];
+    options.include = include[k];
+    const std::string name =
+        variants[k] ? scene.name + " " + variants[k]->key + "=" + variants[k]->text : scene.name;
     options.progress = [&](const std::string& label, int done, int total) {
-      progress.update(scene.name + ": " + label, done, total);
+      progress.update(name + ": " + label, done, total);
     };
-    results.push_back(sweep(scene, grids[&scene - scenes.data()], reference, options));
+    results.push_back(sweep(scene, grids[k], reference, options));
+    results.back().variant = variants[k];
     progress.clear();
     if (g_stop) break;
   }
@@ -171,6 +197,9 @@ void add_sweep_command(CLI::App& app, int* status) {
       ->check(non_empty_path("output file"));
   sweep_app->add_option("--csv", args->csv, "write one CSV row per point here")
       ->check(non_empty_path("output file"));
+  sweep_app->add_option("--vary", args->vary,
+                        "KEY=v1,v2,...: run each --scene once per value of its parameter KEY "
+                        "(values may be fractions: dt=1/30,1/60,1/120,1/240)");
   sweep_app->add_option("--shard", args->shard,
                         "K/N: run the K-th of N parts of the grid (points K, K+N, ...); "
                         "chainbench merge joins the parts' JSON");

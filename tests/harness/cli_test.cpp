@@ -555,3 +555,40 @@ TEST(Cli, MergeNamesAMalformedPartsFieldAndWhy) {
   bad_index["shard"]["index"] = "one";
   refused(bad_index, "shard.index: should be a whole number, got string");
 }
+
+TEST(Cli, SweepVaryRunsEachSceneOncePerValueAndNamesItEverywhere) {
+  const std::string json_path = temp("vary.json"), csv_path = temp("vary.csv");
+  const Result r = chainbench(
+      "sweep --scene stack --set n=3 --vary dt=1/30,1/120 --grid chain:passes=1,4 --json " +
+      json_path + " --csv " + csv_path);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("scene stack (dt=1/30): "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("scene stack (dt=1/120): "), std::string::npos) << r.out;
+  nlohmann::json j;
+  std::ifstream(json_path) >> j;
+  ASSERT_EQ(j["scenes"].size(), 2u);
+  // Each value keeps the default run's simulated time (600 steps at 1/60 s: 10 s).
+  const int steps[] = {300, 1200};
+  for (int k = 0; k < 2; ++k) {
+    const auto& scene = j["scenes"][k]["scene"];
+    EXPECT_EQ(scene["vary"]["key"], "dt");
+    EXPECT_EQ(scene["vary"]["text"], k == 0 ? "1/30" : "1/120");
+    EXPECT_EQ(scene["vary"]["value"].get<double>(), k == 0 ? 1.0 / 30 : 1.0 / 120);
+    EXPECT_EQ(scene["steps"], steps[k]);
+    EXPECT_EQ(j["scenes"][k]["points"].size(), 2u);
+  }
+  std::ifstream csv(csv_path);
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  EXPECT_EQ(header.substr(header.size() - 5), ",vary");
+  EXPECT_EQ(row.substr(row.size() - 8), ",dt=1/30");
+
+  const Result bad = chainbench("sweep --scene stack --vary dt=1/30,1/30");
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--vary dt: value 1/30 given twice"), std::string::npos) << bad.out;
+  const Result file = chainbench("sweep --scene-file " + std::string(CHAINBENCH_EXAMPLES) +
+                                 "/push_two.json --vary dt=1/30");
+  EXPECT_EQ(file.status, 2) << file.out;
+  EXPECT_NE(file.out.find("--vary applies to built-in scenes"), std::string::npos) << file.out;
+}

@@ -123,9 +123,9 @@ ordered_json expectation_json(const Scene& s, const Expectation& e) {
 void compare(RunReport& report) {
   report.comparison.clear();
   const EngineRun* ref = reference_run(report);
-  if (!ref) return;
+  if (!ref || ref->failure) return;
   for (const EngineRun& run : report.runs) {
-    if (&run == ref) continue;
+    if (&run == ref || run.failure) continue;  // a run that failed has no positions
     Comparison c;
     c.engine = run.engine;
     c.reference = ref->engine;
@@ -184,6 +184,7 @@ void print_run_table(std::ostream& out, const RunReport& r) {
   out << "scene " << s.name << ": " << s.bodies.size() << " bodies, " << s.steps << " steps of "
       << fmt_g(s.dt, 4) << " s";
   if (r.reference_spec) out << "; reference " << r.reference_spec->label();
+  if (r.interrupted) out << " (interrupted: the engines that finished)";
   out << "\n\n";
   const bool expect = !s.expect.empty();
   const auto columns = counter_columns(r);
@@ -197,6 +198,13 @@ void print_run_table(std::ostream& out, const RunReport& r) {
   TextTable t(header);
   auto add = [&](const EngineRun& run, bool is_reference) {
     const Comparison* c = comparison_of(r, run);
+    if (run.failure) {  // crash or hang: nothing was measured
+      std::vector<std::string> row(header.size(), "-");
+      row.front() = run.spec.label() + (is_reference ? " (ref)" : "");
+      row.back() = to_string(run.verdict->worst);
+      t.add(row);
+      return;
+    }
     std::vector<std::string> row = {run.spec.label() + (is_reference ? " (ref)" : ""),
                                     fmt_ms(run.timing.median_ms),
                                     c ? fmt_g(c->speedup, 3) : (is_reference ? "1" : "-")};
@@ -259,11 +267,21 @@ ordered_json run_json(const RunReport& r) {
   }
   if (s.penetration_tolerance) j["scene"]["penetration_tolerance"] = *s.penetration_tolerance;
   if (r.reference_spec) j["reference"] = r.reference_spec->str();
+  j["interrupted"] = r.interrupted;
   auto run_entry = [&](const EngineRun& run) {
     ordered_json e;
     e["engine"] = run.engine;
     e["label"] = run.spec.label();
     e["gate"] = is_gate(run.spec);  // the setting under test (registry.h)
+    if (run.failure) {              // its child process crashed or hung: nothing was measured
+      e["failure"] = *run.failure;
+      e["verdict"] = {{"class", to_string(run.verdict->worst)},
+                      {"detail", run.verdict->findings[0].detail},
+                      {"findings",
+                       {{{"class", to_string(run.verdict->worst)},
+                         {"detail", run.verdict->findings[0].detail}}}}};
+      return e;
+    }
     ordered_json positions = ordered_json::array();
     for (const Vec2d& p : run.final_positions)
       positions.push_back({json_number(p.x), json_number(p.y)});

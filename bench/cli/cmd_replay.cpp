@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "engine_choice.h"
 #include "input_error.h"
+#include "output_file.h"
 #include "registry.h"
 #include "run_scene.h"
 #include "value_checks.h"
@@ -45,6 +46,7 @@ void add_replay_command(CLI::App& app, int* status) {
   r->callback([args, status, scene, file] {
     if (scene->count() == 0 && file->count() == 0)
       throw InputError("replay: give --scene NAME or --scene-file FILE");
+    refuse_clashing_files({{"--out", &args->replay}}, {{"--scene-file", &args->scene_file}});
     *status = run_scene(*args);
   });
 }

@@ -2,6 +2,7 @@
 
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -36,6 +37,7 @@ ChildOutcome run_in_child_bytes(const std::function<std::string()>& work, std::s
   if (pipe(fds) != 0) throw std::runtime_error("run_in_child: pipe() failed");
   std::fflush(nullptr);  // nothing buffered may be written twice
   const auto t0 = Clock::now();
+  const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) {
     close(fds[0]);
@@ -48,6 +50,9 @@ ChildOutcome run_in_child_bytes(const std::function<std::string()>& work, std::s
     // temporary files) are the caller's alone.
     for (const int sig : {SIGINT, SIGTERM, SIGHUP})
       signal(sig, SIG_DFL);
+    // A caller killed outright takes its child along: a hung plugin must not outlive it.
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != parent) _exit(4);
     const std::string bytes = work();  // the child's own copy of the caller's memory
     // The length first, so that a result cut short is told from a whole one.
     const std::uint64_t size = bytes.size();

@@ -177,6 +177,15 @@ void print_expectation_summary(std::ostream& out, const RunReport& r, const Engi
   }
 }
 
+ordered_json verdict_json(const Verdict& v) {
+  ordered_json findings = ordered_json::array();
+  for (const Finding& f : v.findings)
+    findings.push_back({{"class", to_string(f.what)}, {"detail", f.detail}});
+  return {{"class", to_string(v.worst)},
+          {"detail", v.findings.empty() ? "" : v.findings[0].detail},
+          {"findings", std::move(findings)}};
+}
+
 }  // namespace
 
 void print_run_table(std::ostream& out, const RunReport& r) {
@@ -275,11 +284,7 @@ ordered_json run_json(const RunReport& r) {
     e["gate"] = is_gate(run.spec);  // the setting under test (registry.h)
     if (run.failure) {              // its child process crashed or hung: nothing was measured
       e["failure"] = *run.failure;
-      e["verdict"] = {{"class", to_string(run.verdict->worst)},
-                      {"detail", run.verdict->findings[0].detail},
-                      {"findings",
-                       {{{"class", to_string(run.verdict->worst)},
-                         {"detail", run.verdict->findings[0].detail}}}}};
+      e["verdict"] = verdict_json(*run.verdict);
       return e;
     }
     ordered_json positions = ordered_json::array();
@@ -348,15 +353,7 @@ ordered_json run_json(const RunReport& r) {
     e["counters"] = std::move(counters);
     e["degraded_steps"] = run.degraded_steps;
     if (run.expect) e["expect"] = expect_result_json(s, *run.expect);
-    if (run.verdict) {
-      ordered_json findings = ordered_json::array();
-      for (const Finding& f : run.verdict->findings)
-        findings.push_back({{"class", to_string(f.what)}, {"detail", f.detail}});
-      e["verdict"] = {
-          {"class", to_string(run.verdict->worst)},
-          {"detail", run.verdict->findings.empty() ? "" : run.verdict->findings[0].detail},
-          {"findings", std::move(findings)}};
-    }
+    if (run.verdict) e["verdict"] = verdict_json(*run.verdict);
     return e;
   };
   j["runs"] = ordered_json::array();

@@ -42,7 +42,7 @@ void add_replay_command(CLI::App& app, int* status) {
   r->footer(
       "The page needs nothing beside it: open it in a browser, mail it, attach it to a bug "
       "report. Exit status: 0 written; 2 bad input or usage; 1 the page could not be written in "
-      "full.");
+      "full, or a plugin crashed or hung (the page shows the other engines); 130 Ctrl-C.");
   r->callback([args, status, scene, file] {
     if (scene->count() == 0 && file->count() == 0)
       throw InputError("replay: give --scene NAME or --scene-file FILE");

@@ -103,6 +103,8 @@ int run_scene(const RunArgs& a) {
   auto run_one = [&](const EngineSpec& spec) -> std::optional<EngineRun> {
     if (interrupt->stopped()) return std::nullopt;
     options.progress = [&](int done, int total) { progress.update(spec.str(), done, total); };
+    // Drawn here first: a plugin's bar is drawn by its child process, and cleared here.
+    progress.update(spec.str(), 0, scene.steps);
     EngineRun r = run_engine(scene, spec, options);
     progress.clear();
     if (r.interrupted) return std::nullopt;  // a half run says nothing

@@ -85,7 +85,10 @@ OutputFile::OutputFile(const std::string& path, const char* option) : path_(path
   if (exists && S_ISDIR(st.st_mode))
     throw InputError(std::string(option) + ": cannot write " + path + ": is a directory");
   errno = 0;
-  if (exists && !S_ISREG(st.st_mode)) {
+  // /dev/stdout names whatever standard output is, a regular file too: replacing that file would
+  // lose what the command prints there.
+  const bool special = path.rfind("/dev/", 0) == 0 || path.rfind("/proc/", 0) == 0;
+  if (exists && (special || !S_ISREG(st.st_mode))) {
     out_.open(path, std::ios::binary | std::ios::trunc);  // a device or a pipe: no rename
   } else {
     // A symbolic link keeps pointing where it did: the file it names is replaced.

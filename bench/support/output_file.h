@@ -2,7 +2,8 @@
 // not at all: the text goes to a temporary file beside the target, which commit_outputs() renames
 // over it once everything is written. Until then the target keeps what it held (or stays
 // absent); an output never committed (an error, Ctrl-C, SIGTERM, SIGHUP) removes its temporary.
-// A target that exists and is not a regular file (/dev/stdout, a pipe) is written directly.
+// A target that exists and is not a regular file (a pipe), or is under /dev or /proc
+// (/dev/stdout), is written directly.
 #pragma once
 
 #include <fstream>

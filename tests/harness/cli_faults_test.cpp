@@ -212,16 +212,18 @@ TEST(CliFaults, APluginThatDiesIsItsRowNotTheEndOfTheRun) {
     const char* fault;
     const char* verdict;
     const char* reason;  // in the failure (a sanitizer may turn a signal into an exit)
+    // The time limit: long enough for a sanitizer to report a crash, but for the hang.
+    const char* timeout;
   };
-  for (const Case& c : {Case{"crash", "crash", ""}, Case{"abort", "crash", ""},
-                        Case{"exit", "crash", "exited with status 0 and no result"},
-                        Case{"hang", "hang", "ran out of time (1 s)"}}) {
+  for (const Case& c : {Case{"crash", "crash", "", "60"}, Case{"abort", "crash", "", "60"},
+                        Case{"exit", "crash", "exited with status 0 and no result", "60"},
+                        Case{"hang", "hang", "ran out of time (1 s)", "1"}}) {
     SCOPED_TRACE(c.fault);
     const std::string dir = folder(std::string("dies_") + c.fault);
     write(dir + "out.json", "previous");
     const std::string engines = " --engines chain," + plugin(c.fault) + " --reference none";
-    const Result r = chainbench("run " + kScene + engines + " --timeout 1 --json " + dir +
-                                "out.json --csv " + dir + "out.csv");
+    const Result r = chainbench("run " + kScene + engines + " --timeout " + c.timeout + " --json " +
+                                dir + "out.json --csv " + dir + "out.csv");
     EXPECT_EQ(r.status, 1) << r.out;
     const nlohmann::json j = nlohmann::json::parse(read(dir + "out.json"));
     ASSERT_EQ(j["runs"].size(), 2u);
@@ -234,14 +236,15 @@ TEST(CliFaults, APluginThatDiesIsItsRowNotTheEndOfTheRun) {
         << r.out;
     EXPECT_EQ(leftovers(dir, {"out.json", "out.csv"}), std::vector<std::string>{});
 
-    const Result required =
-        chainbench("run " + kScene + engines + " --timeout 1 --require " + plugin(c.fault));
+    const Result required = chainbench("run " + kScene + engines + " --timeout " + c.timeout +
+                                       " --require " + plugin(c.fault));
     EXPECT_EQ(required.status, 3) << required.out;
     EXPECT_NE(required.out.find("fails: " + std::string(c.verdict)), std::string::npos)
         << required.out;
 
-    const Result sweep = chainbench("sweep " + kScene + " --timeout 1 --grid chain:passes=1 " +
-                                    "--grid " + plugin(c.fault) + " --json " + dir + "sweep.json");
+    const Result sweep =
+        chainbench("sweep " + kScene + " --timeout " + c.timeout + " --grid chain:passes=1 " +
+                   "--grid " + plugin(c.fault) + " --json " + dir + "sweep.json");
     EXPECT_EQ(sweep.status, 1) << sweep.out;
     const nlohmann::json s = nlohmann::json::parse(read(dir + "sweep.json"));
     const auto& points = s["scenes"][0]["points"];

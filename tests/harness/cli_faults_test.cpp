@@ -105,6 +105,25 @@ bool wait_for(const std::string& path) {
   return false;
 }
 
+// Whether some process still runs with `mark` in its environment (a child of a test's command).
+bool runs_with(const std::string& mark) {
+  const std::string entry = "CHAINBENCH_TEST_HANG_MARK=" + mark;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string environ = read(e.path().string() + "/environ");
+    if (environ.find(entry) != std::string::npos) return true;
+  }
+  return false;
+}
+
+// Waits (up to a minute) for every process with `mark` in its environment to end.
+bool gone(const std::string& mark) {
+  for (int k = 0; k < 600; ++k) {
+    if (!runs_with(mark)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return false;
+}
+
 int finish(pid_t pid) {
   int raw = 0;
   waitpid(pid, &raw, 0);
@@ -134,6 +153,7 @@ TEST(CliFaults, AKilledRunLeavesThePreviousOutputAndNoTemporary) {
   EXPECT_EQ(finish(pid), 128 + SIGTERM);
   EXPECT_EQ(read(dir + "out.json"), "previous");
   EXPECT_EQ(leftovers(dir, {"out.json", "log", "mark"}), std::vector<std::string>{});
+  EXPECT_TRUE(gone(dir + "mark")) << "the hung plugin's process outlived the command";
 }
 
 // Ctrl-C in run keeps the engines that finished, as sweep does.

@@ -123,9 +123,9 @@ ordered_json expectation_json(const Scene& s, const Expectation& e) {
 void compare(RunReport& report) {
   report.comparison.clear();
   const EngineRun* ref = reference_run(report);
-  if (!ref) return;
+  if (!ref || ref->failure) return;
   for (const EngineRun& run : report.runs) {
-    if (&run == ref) continue;
+    if (&run == ref || run.failure) continue;  // a run that failed has no positions
     Comparison c;
     c.engine = run.engine;
     c.reference = ref->engine;
@@ -177,6 +177,15 @@ void print_expectation_summary(std::ostream& out, const RunReport& r, const Engi
   }
 }
 
+ordered_json verdict_json(const Verdict& v) {
+  ordered_json findings = ordered_json::array();
+  for (const Finding& f : v.findings)
+    findings.push_back({{"class", to_string(f.what)}, {"detail", f.detail}});
+  return {{"class", to_string(v.worst)},
+          {"detail", v.findings.empty() ? "" : v.findings[0].detail},
+          {"findings", std::move(findings)}};
+}
+
 }  // namespace
 
 void print_run_table(std::ostream& out, const RunReport& r) {
@@ -184,6 +193,7 @@ void print_run_table(std::ostream& out, const RunReport& r) {
   out << "scene " << s.name << ": " << s.bodies.size() << " bodies, " << s.steps << " steps of "
       << fmt_g(s.dt, 4) << " s";
   if (r.reference_spec) out << "; reference " << r.reference_spec->label();
+  if (r.interrupted) out << " (interrupted: the engines that finished)";
   out << "\n\n";
   const bool expect = !s.expect.empty();
   const auto columns = counter_columns(r);
@@ -197,6 +207,13 @@ void print_run_table(std::ostream& out, const RunReport& r) {
   TextTable t(header);
   auto add = [&](const EngineRun& run, bool is_reference) {
     const Comparison* c = comparison_of(r, run);
+    if (run.failure) {  // crash or hang: nothing was measured
+      std::vector<std::string> row(header.size(), "-");
+      row.front() = run.spec.label() + (is_reference ? " (ref)" : "");
+      row.back() = to_string(run.verdict->worst);
+      t.add(row);
+      return;
+    }
     std::vector<std::string> row = {run.spec.label() + (is_reference ? " (ref)" : ""),
                                     fmt_ms(run.timing.median_ms),
                                     c ? fmt_g(c->speedup, 3) : (is_reference ? "1" : "-")};
@@ -259,11 +276,17 @@ ordered_json run_json(const RunReport& r) {
   }
   if (s.penetration_tolerance) j["scene"]["penetration_tolerance"] = *s.penetration_tolerance;
   if (r.reference_spec) j["reference"] = r.reference_spec->str();
+  j["interrupted"] = r.interrupted;
   auto run_entry = [&](const EngineRun& run) {
     ordered_json e;
     e["engine"] = run.engine;
     e["label"] = run.spec.label();
     e["gate"] = is_gate(run.spec);  // the setting under test (registry.h)
+    if (run.failure) {              // its child process crashed or hung: nothing was measured
+      e["failure"] = *run.failure;
+      e["verdict"] = verdict_json(*run.verdict);
+      return e;
+    }
     ordered_json positions = ordered_json::array();
     for (const Vec2d& p : run.final_positions)
       positions.push_back({json_number(p.x), json_number(p.y)});
@@ -330,15 +353,7 @@ ordered_json run_json(const RunReport& r) {
     e["counters"] = std::move(counters);
     e["degraded_steps"] = run.degraded_steps;
     if (run.expect) e["expect"] = expect_result_json(s, *run.expect);
-    if (run.verdict) {
-      ordered_json findings = ordered_json::array();
-      for (const Finding& f : run.verdict->findings)
-        findings.push_back({{"class", to_string(f.what)}, {"detail", f.detail}});
-      e["verdict"] = {
-          {"class", to_string(run.verdict->worst)},
-          {"detail", run.verdict->findings.empty() ? "" : run.verdict->findings[0].detail},
-          {"findings", std::move(findings)}};
-    }
+    if (run.verdict) e["verdict"] = verdict_json(*run.verdict);
     return e;
   };
   j["runs"] = ordered_json::array();

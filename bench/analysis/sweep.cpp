@@ -37,6 +37,8 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
   result.steps = scene.steps;
   RunOptions run_options;  // every metric
   run_options.stop = options.stop;
+  run_options.isolate = true;  // a plugin that dies is its point's crash row
+  run_options.timeout_s = options.timeout_s;
   const bool use_expect = !scene.expect.empty();
   auto included = [&](std::size_t j) { return options.include.empty() || options.include[j]; };
   const int points =
@@ -72,9 +74,13 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
     SweepPoint point;
     point.run = run_engine(scene, spec, run_options);
     if (point.run.interrupted) break;  // a half-run point says nothing; keep the others
-    point.error = use_expect ? expectation_error(scene, *point.run.expect)
-                             : position_error(scene, point.run.final_positions,
-                                              result.reference_run->final_positions);
+    if (point.run.failure || (!use_expect && result.reference_run->failure)) {
+      point.error = {HUGE_VAL, HUGE_VAL};  // nothing to measure (a crash or a hang)
+    } else {
+      point.error = use_expect ? expectation_error(scene, *point.run.expect)
+                               : position_error(scene, point.run.final_positions,
+                                                result.reference_run->final_positions);
+    }
     result.points.push_back(std::move(point));
     ++done;
   }
@@ -133,6 +139,11 @@ void print_sweep_table(std::ostream& out, const SweepResult& r) {
   auto opt = [](const std::optional<double>& v) { return v ? fmt_g(*v) : std::string("-"); };
   for (const SweepPoint& p : r.points) {
     const auto stable = p.run.stable();
+    if (p.run.failure) {  // crash or hang: nothing was measured
+      t.add({p.run.spec.label(), "-", "-", "-", "-", "-", "-", "-", to_string(p.run.verdict->worst),
+             ""});
+      continue;
+    }
     t.add({p.run.spec.label(), fmt_ms(p.run.timing.median_ms), fmt_ms(p.run.timing.spread_ms),
            fmt_g(p.error.max), fmt_g(p.error.rms), opt(p.run.metrics.efd_per_body_step),
            opt(p.run.metrics.max_penetration), stable ? (*stable ? "yes" : "NO") : "-",
@@ -174,6 +185,7 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
       point["stable"] = stable ? ordered_json(*stable) : ordered_json(nullptr);
       point["pareto"] = p.pareto;
       if (p.run.verdict) point["verdict"] = to_string(p.run.verdict->worst);
+      if (p.run.failure) point["failure"] = *p.run.failure;
       if (const auto hits = p.run.counter("budget_hits")) point["budget_hits"] = *hits;
       point["degraded_steps"] = p.run.degraded_steps;
       s["points"].push_back(std::move(point));

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -51,6 +52,9 @@ struct SweepOptions {
   // none to run, the reference does not run either.
   std::vector<bool> include;
   std::function<void(const std::string&, int, int)> progress;  // (label, done, total) points
+  // Seconds a point of an engine run in a child process (plugins, isolated_run.h) may take
+  // before it counts as a hang.
+  double timeout_s = HUGE_VAL;
 };
 
 // Runs every spec on the scene (those included); the reference first (unless the scene has

@@ -1,6 +1,7 @@
 // chainbench sweep: error against run time over a grid of engine settings.
 #include "commands.h"
 #include "input_error.h"
+#include "interrupt.h"
 #include "output_file.h"
 #include "progress.h"
 #include "registry.h"
@@ -12,24 +13,18 @@
 #include "value_checks.h"
 
 #include <algorithm>
-#include <atomic>
-#include <csignal>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace chainbench {
 namespace {
-
-std::atomic<bool> g_stop{false};
-
-extern "C" void on_interrupt(int) {
-  g_stop.store(true);
-}
 
 struct SweepArgs {
   std::vector<std::string> scenes, scene_files, sets, grids;
   std::string reference;  // empty: the registry's accurate reference
   int steps = 0;
+  double timeout = 0.0;  // 0: none
   std::string json, csv;
   std::string shard;  // "K/N", or empty: the whole grid
   std::string vary;   // "KEY=v1,v2,...": each built-in scene once per value
@@ -123,14 +118,14 @@ int run(const SweepArgs& a) {
   auto json_out = open_output(a.json, "--json");
   auto csv_out = open_output(a.csv, "--csv");
 
-  g_stop = false;
-  const auto previous = std::signal(SIGINT, on_interrupt);
+  std::optional<Interrupt> interrupt(std::in_place);
   Progress progress;
   std::vector<SweepResult> results;
   for (const Scene& scene : scenes) {
     const std::size_t k = static_cast<std::size_t>(&scene - scenes.data());
     SweepOptions options;
-    options.stop = &g_stop;
+    options.stop = interrupt->flag();
+    if (a.timeout > 0.0) options.timeout_s = a.timeout;
     options.include = include[k];
     const std::string name =
         variants[k] ? scene.name + " " + variants[k]->key + "=" + variants[k]->text : scene.name;
@@ -140,9 +135,10 @@ int run(const SweepArgs& a) {
     results.push_back(sweep(scene, grids[k], reference, options));
     results.back().variant = variants[k];
     progress.clear();
-    if (g_stop) break;
+    if (interrupt->stopped()) break;
   }
-  std::signal(SIGINT, previous);
+  const bool stopped = interrupt->stopped();
+  interrupt.reset();
 
   for (const SweepResult& r : results) {
     print_sweep_table(std::cout, r);
@@ -161,16 +157,27 @@ int run(const SweepArgs& a) {
               << ran.size() << " of its " << next
               << " points; pareto marks compare these alone (chainbench merge marks the whole)\n";
   }
-  if (json_out) *json_out << json.dump(2) << '\n';
-  if (csv_out) write_sweep_csv(*csv_out, results);
-  finish_output(json_out.get(), a.json);
-  finish_output(csv_out.get(), a.csv);
-  if (g_stop) {
-    std::cerr
-        << "chainbench: interrupted; the points measured so far are above (and in the outputs)\n";
-    return 130;
+  if (json_out) json_out->stream() << json.dump(2) << '\n';
+  if (csv_out) write_sweep_csv(csv_out->stream(), results);
+  commit_outputs({json_out.get(), csv_out.get()});
+  if (stopped) {
+    Interrupt::report("the points measured so far are above (and in the outputs)");
+    return kInterruptedStatus;
   }
-  return 0;
+  // A plugin that crashed or hung has its row; the sweep still fails.
+  int status = 0;
+  for (const SweepResult& r : results) {
+    auto failed = [&](const EngineRun& run) {
+      if (!run.failure) return;
+      std::cerr << "chainbench: " << run.spec.label() << " on scene " << r.scene << ": "
+                << *run.failure << "\n";
+      status = 1;
+    };
+    if (r.reference_run) failed(*r.reference_run);
+    for (const SweepPoint& p : r.points)
+      failed(p.run);
+  }
+  return status;
 }
 
 }  // namespace
@@ -193,6 +200,11 @@ void add_sweep_command(CLI::App& app, int* status) {
           accurate_reference().label());
   sweep_app->add_option("--steps", args->steps, "steps to run instead of each scene's")
       ->transform(whole_number_in(1, 10'000'000));
+  sweep_app
+      ->add_option("--timeout", args->timeout,
+                   "seconds a point of a plugin (run in a child process) may take before it "
+                   "counts as a hang; default: no limit")
+      ->check(number_in(0.001, 1e9));
   sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here")
       ->check(non_empty_path("output file"));
   sweep_app->add_option("--csv", args->csv, "write one CSV row per point here")
@@ -204,7 +216,10 @@ void add_sweep_command(CLI::App& app, int* status) {
                         "K/N: run the K-th of N parts of the grid (points K, K+N, ...); "
                         "chainbench merge joins the parts' JSON");
   sweep_app->callback([args, status] {
-    refuse_shared_outputs({{"--json", &args->json}, {"--csv", &args->csv}});
+    std::vector<NamedFile> inputs;
+    for (const std::string& file : args->scene_files)
+      inputs.emplace_back("--scene-file", &file);
+    refuse_clashing_files({{"--json", &args->json}, {"--csv", &args->csv}}, inputs);
     *status = run(*args);
   });
 }

@@ -60,8 +60,11 @@ struct EngineDef {
   std::string stats_block;            // also writes its counters under this run-JSON key
   std::vector<std::string> defaults;  // specs run when a command is given no engine list
   bool reference = false;             // the default reference of `run`
-  std::string accurate;               // a setting finer than any sweep point: a sweep reference
-  std::vector<std::string> sweep;     // default sweep, one knob at a time: "vel_iters=1,2,4"
+  // Its code is not the harness' own (plugins): `run` and `sweep` run it in a child process, so
+  // that a crash or a hang in it is its verdict rather than the end of the command.
+  bool isolated = false;
+  std::string accurate;            // a setting finer than any sweep point: a sweep reference
+  std::vector<std::string> sweep;  // default sweep, one knob at a time: "vel_iters=1,2,4"
   // A setting that must be right: `stress` fails when its verdict on a case is anything but ok or
   // budget, except where a known failure lists that very case and verdict, with its reason.
   std::string gate;

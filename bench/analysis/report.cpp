@@ -256,6 +256,7 @@ ordered_json run_json(const RunReport& r) {
   j["schema"] = "chainbench.run/1";
   j["scene"] = {{"name", s.name}, {"bodies", s.bodies.size()}, {"steps", s.steps}, {"dt", s.dt}};
   if (!s.description.empty()) j["scene"]["description"] = s.description;
+  if (!s.family.empty()) j["scene"]["family"] = s.family;
   // Sizes and kinds in scene order, so that tools can draw the final states.
   ordered_json half = ordered_json::array(), kinds = ordered_json::array();
   ordered_json names = ordered_json::array(), centers = ordered_json::array();
@@ -282,6 +283,8 @@ ordered_json run_json(const RunReport& r) {
     e["engine"] = run.engine;
     e["label"] = run.spec.label();
     e["gate"] = is_gate(run.spec);  // the setting under test (registry.h)
+    if (const std::string& caveat = engine_def(run.spec.engine).caveat; !caveat.empty())
+      e["caveat"] = caveat;
     if (run.failure) {              // its child process crashed or hung: nothing was measured
       e["failure"] = *run.failure;
       e["verdict"] = verdict_json(*run.verdict);

@@ -24,8 +24,8 @@ void add_replay_command(CLI::App& app, int* status) {
   scene->excludes(file);
   r->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
   r->add_option("--engines", args->engines,
-                "engine specs, comma separated; default: " + default_engine_list() +
-                    ", those that can run the scene")
+                "engine specs, comma separated, \"defaults\" for the default list; default: " +
+                    default_engine_list() + ", those that can run the scene")
       ->check(kEngineList);
   r->add_option("--reference", args->reference,
                 "engine the chart measures the others from, or none; default: " +

@@ -200,7 +200,8 @@ void add_run_command(CLI::App& app, int* status) {
   run_app->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
   run_app
       ->add_option("--engines", args->engines,
-                   "engine specs, comma separated (chainbench engines); default: " +
+                   "engine specs, comma separated (chainbench engines), \"defaults\" for the "
+                   "default list (defaults,box2d:sleep=1 adds one); default: " +
                        default_engine_list() + ", those that can run the scene")
       ->check(kEngineList);
   run_app->add_option(

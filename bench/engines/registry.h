@@ -56,7 +56,10 @@ struct EngineDef {
   std::vector<KeyDef> keys;
   bool open_keys = false;  // keys it does not declare are passed to the engine (plugins)
   std::function<Capabilities(const EngineSpec&)> capabilities;
-  std::vector<CounterDef> counters;   // what its engines count (a plugin's, once loaded)
+  std::vector<CounterDef> counters;  // what its engines count (a plugin's, once loaded)
+  // How its times must be read, said beside every figure that quotes them (run JSON "caveat",
+  // `chainbench engines`, the benchmark's context, the report's and README's ratios); or empty.
+  std::string caveat;
   std::string stats_block;            // also writes its counters under this run-JSON key
   std::vector<std::string> defaults;  // specs run when a command is given no engine list
   bool reference = false;             // the default reference of `run`

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -591,4 +592,40 @@ TEST(Cli, SweepVaryRunsEachSceneOncePerValueAndNamesItEverywhere) {
                                  "/push_two.json --vary dt=1/30");
   EXPECT_EQ(file.status, 2) << file.out;
   EXPECT_NE(file.out.find("--vary applies to built-in scenes"), std::string::npos) << file.out;
+}
+
+TEST(Cli, DefaultsInAnEngineListStandForTheDefaultEngines) {
+  const std::string json_path = temp("defaults.json");
+  const Result r = chainbench(
+      "run --scene stack --set n=3 --set steps=10 --engines "
+      "defaults,chipmunk:sleep=1,chain --json " +
+      json_path);
+  ASSERT_EQ(r.status, 0) << r.out;
+  nlohmann::json j;
+  std::ifstream(json_path) >> j;
+  std::vector<std::string> labels;
+  for (const auto& run : j["runs"])
+    labels.push_back(run["label"]);
+  // The defaults in their order, the ones named after them; chain, named again, runs once.
+  EXPECT_EQ(labels, (std::vector<std::string>{"chain:variant=seed2014", "box2d", "chipmunk",
+                                              "chipmunk:sleep=1", "chain"}));
+  for (const auto& run : j["runs"]) {
+    const bool chipmunk = run["engine"].get<std::string>().rfind("chipmunk", 0) == 0;
+    EXPECT_EQ(run.contains("caveat"), chipmunk) << run["label"];
+  }
+  EXPECT_EQ(j["scene"]["family"], "stacking");
+
+  // A default that cannot run the scene is left out with a note, as with no list.
+  const Result friction = chainbench(
+      "run --scene stack --set n=3 --set steps=10 --set friction=0.5 --engines "
+      "defaults,box2d:sleep=1");
+  EXPECT_EQ(friction.status, 0) << friction.out;
+  EXPECT_NE(friction.out.find("chain:variant=seed2014 left out"), std::string::npos)
+      << friction.out;
+  const Result twice = chainbench("run --scene stack --engines defaults,defaults");
+  EXPECT_EQ(twice.status, 2) << twice.out;
+  EXPECT_NE(twice.out.find("defaults given twice"), std::string::npos) << twice.out;
+  const Result keys = chainbench("run --scene stack --engines defaults,sleep=1");
+  EXPECT_EQ(keys.status, 2) << keys.out;
+  EXPECT_NE(keys.out.find("follows defaults, which takes no keys"), std::string::npos) << keys.out;
 }

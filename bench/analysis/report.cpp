@@ -285,7 +285,7 @@ ordered_json run_json(const RunReport& r) {
     e["gate"] = is_gate(run.spec);  // the setting under test (registry.h)
     if (const std::string& caveat = engine_def(run.spec.engine).caveat; !caveat.empty())
       e["caveat"] = caveat;
-    if (run.failure) {              // its child process crashed or hung: nothing was measured
+    if (run.failure) {  // its child process crashed or hung: nothing was measured
       e["failure"] = *run.failure;
       e["verdict"] = verdict_json(*run.verdict);
       return e;

@@ -14,12 +14,14 @@ namespace {
 // lies between ',' or ';'; a key=value entry continues the spec before it, so none may follow
 // `defaults`.
 std::pair<std::string, bool> take_defaults(const std::string& list) {
+  if (list.empty()) return {list, false};
   std::string rest;
   bool defaults = false, after_defaults = false;
   std::size_t begin = 0;
   while (begin <= list.size()) {
     const std::size_t end = std::min(list.find_first_of(",;", begin), list.size());
     const std::string entry = list.substr(begin, end - begin);
+    if (entry.empty()) throw InputError("engine list \"" + list + "\": empty entry");
     if (entry == kDefaultEngines) {
       if (defaults) throw InputError("--engines " + list + ": " + kDefaultEngines + " given twice");
       defaults = after_defaults = true;

@@ -33,6 +33,10 @@ BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
 ACCURACY_BUDGET_S = 20.0
 
 
+# Benchmark name prefixes that are not a family's engine rows: the harness' cost and plain worlds.
+EXTRA = ("harness", "plain")
+
+
 def load(path):
     """Benchmarks by (family, engine, size): one entry each, the median when repeated."""
     with open(path, encoding="utf-8") as f:
@@ -47,6 +51,8 @@ def load(path):
         if len(parts) < 3 or parts[-1] in ("BigO", "RMS") or "_BigO" in b["name"] or "_RMS" in b["name"]:
             continue
         size = next((p for p in parts[2:] if p.isdigit()), "")
+        if parts[0] == "plain":  # plain/FAMILY/ENGINE/SIZE: keyed ("plain", FAMILY, "ENGINE/SIZE")
+            size = f"{parts[2]}/{size}"
         if parts[0] == "harness":  # harness/FAMILY/SIZE/metrics:K: one entry per K
             flag = next((p for p in parts if p.startswith("metrics:")), None)
             if flag is None:
@@ -168,9 +174,10 @@ def answer_error(accuracy, group, engine):
 def ordered(runs):
     """Families in the order the benchmark ran them, engines likewise, and the (family, size)
     rows in family order, then by size."""
-    order = list(dict.fromkeys(family for family, engine, size in runs if family != "harness"))
-    engines = list(dict.fromkeys(engine for family, engine, size in runs if family != "harness"))
-    groups = sorted({(family, size) for family, engine, size in runs if family != "harness"},
+    timed = [(family, engine, size) for family, engine, size in runs if family not in EXTRA]
+    order = list(dict.fromkeys(family for family, engine, size in timed))
+    engines = list(dict.fromkeys(engine for family, engine, size in timed))
+    groups = sorted({(family, size) for family, engine, size in timed},
                     key=lambda g: (order.index(g[0]), int(g[1] or 0)))
     return engines, groups
 
@@ -325,6 +332,28 @@ def harness_table(context, runs, subject):
             "|---|---:|---:|---:|---:|---:|"] + out
 
 
+def plain_table(context, runs):
+    """Per plain/FAMILY/ENGINE/SIZE row (a world built by hand in the engine's own API): the
+    engine's time through its adapter beside it, and their ratio."""
+    recipes = family_recipes(context)
+    out = []
+    for (f, family, size), plain in runs.items():
+        if f != "plain" or "/" not in size:
+            continue
+        engine, size = size.split("/", 1)
+        adapted = runs.get((family, engine, size))
+        if not adapted:
+            continue
+        out.append(f"| {row_label(recipes, family, size)} | `{engine}` | {fmt_ms(ms(adapted))} | "
+                   f"{fmt_ms(ms(plain))} | {ms(adapted) / ms(plain):.2f}x |")
+    if not out:
+        return []
+    return ["", "Adapter cost: the engine through chainbench's adapter, and the same scene as a world "
+            "built by hand in the engine's own API at the same settings (`plain/FAMILY/ENGINE/SIZE`):",
+            "", "| scene | engine | adapter ms/step | plain world ms/step | ratio |",
+            "|---|---|---:|---:|---:|"] + out
+
+
 def tables(context, runs, accuracy=None):
     """Every table, in the order the module docstring gives."""
     accuracy = accuracy or {}
@@ -336,6 +365,7 @@ def tables(context, runs, accuracy=None):
     out += work_table(context, runs)
     out += scaling_tables(context, runs, subject)
     out += harness_table(context, runs, subject)
+    out += plain_table(context, runs)
     out += ["", f"Measured {context.get('date', '?')} on {context.get('num_cpus', '?')} CPUs at "
             f"{context.get('mhz_per_cpu', '?')} MHz, one benchmark at a time; ratios are from the same run."]
     return "\n".join(out)

@@ -18,7 +18,9 @@ the subject's final-position error against the reference and which engines meet 
 
 The tables, in order: the headline (the moving scenes, where every engine works each step), the
 results (time per step of every engine on every row), the work and memory behind them (contacts
-per step and heap held per body), the subject's scaling per family, and the harness' cost.
+per step and heap held per body), the subject's scaling per family, the harness' cost, and an
+adapter's cost: an engine through chainbench beside the same scene built by hand in its own API
+(plain/FAMILY/ENGINE/SIZE rows, such as the box2d3 pyramid's).
 """
 import argparse
 import json

@@ -61,6 +61,29 @@ TEST(Box2d3, CountsTheLargePyramidsContacts) {
   EXPECT_EQ(contacts(*engine), 14'950.0);
 }
 
+// A stack of three boxes touches three times, awake or asleep (asleep by step 120); boxes apart
+// touch nothing, however close v3's speculative margin brings them into its contact list.
+TEST(Box2d3, CountsEachTouchingPairOnce) {
+  const Scene stack = make_scene("stack", {"n=3"});
+  for (const char* spec : {"box2d3", "box2d3:sleep=1"}) {
+    SCOPED_TRACE(spec);
+    const auto engine = make_engine(parse_engine_spec(spec), stack);
+    for (int k = 0; k <= 120; ++k) {
+      engine->step(k);
+      if (k == 0 || k == 120) {
+        EXPECT_EQ(contacts(*engine), 3.0) << "step " << k;
+      }
+    }
+  }
+  Scene apart;
+  apart.name = "apart";
+  build::ground(apart, 10.0);
+  build::box(apart, "falling", BodyKind::kDynamic, {0.0, 3.0}, {0.5, 0.5});
+  const auto engine = make_engine(parse_engine_spec("box2d3"), apart);
+  engine->step(0);
+  EXPECT_EQ(contacts(*engine), 0.0);
+}
+
 // Box2D v3 partitions its work the same way whatever the workers: 1, 2 and 3 threads end a moving
 // scene (bodies falling, colliding and sliding) in the very same bits.
 TEST(Box2d3, SameBitsOnEveryThreadCount) {

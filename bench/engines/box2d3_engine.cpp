@@ -192,7 +192,7 @@ EngineDef register_box2d3() {
                 "workers (v3's workerCount) on the adapter's own threads; same answer for any"),
       whole_key("ccd", 1, 0, 2,
                 "continuous collision: 0 off, 1 against static bodies (v3's default), 2 every "
-                "dynamic body a bullet (also against kinematic and dynamic ones)"),
+                "dynamic body a bullet (also against kinematic ones; v3 bullets skip bullets)"),
       number_key("hertz", 30.0, 0.01, 1e6,
                  "contact stiffness, Hz (v3 silently uses at most 1/8 of the sub-step rate)"),
       number_key("damping", 10.0, 0.0, 1e6, "contact damping ratio"),

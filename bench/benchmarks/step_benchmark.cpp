@@ -19,6 +19,10 @@
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 
+#ifdef CHAINBENCH_BOX2D3_PLAIN
+#include "plain_pyramid.h"
+#endif
+
 #include <algorithm>
 #include <cstdio>
 #include <optional>
@@ -165,6 +169,34 @@ void harness_benchmark(benchmark::State& state, const Family& family, int size,
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
+#ifdef CHAINBENCH_BOX2D3_PLAIN
+// plain/pyramid/box2d3/BASE: the pyramid family's scene as a Box2D v3 world built by hand with the
+// plain v3 API (plain_pyramid.h), at the box2d3 engine's defaults, warmed up and timed as
+// step_benchmark times pyramid/box2d3: what the adapter adds is the difference.
+void register_plain_box2d3() {
+  const Family* pyramid = nullptr;
+  for (const Family& family : benchmark_families()) {
+    if (family.name == "pyramid") pyramid = &family;
+  }
+  if (!pyramid) return;
+  const EngineSpec defaults = parse_engine_spec("box2d3");
+  const auto substeps = static_cast<int>(defaults.get_int("substeps"));
+  const int warmup = pyramid->warmup;
+  auto* b =
+      benchmark::RegisterBenchmark("plain/pyramid/box2d3", [substeps, warmup](benchmark::State& s) {
+        PlainBox2d3Pyramid world(static_cast<int>(s.range(0)), substeps);
+        for (int k = 0; k < warmup; ++k)
+          world.step();
+        for (auto _ : s)
+          world.step();
+        s.counters["bodies"] = static_cast<double>(world.bodies());
+      });
+  b->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.5);
+  for (const int size : pyramid->sizes)
+    b->Arg(size);
+}
+#endif
+
 void register_harness(const EngineSpec& spec, std::size_t max_bodies) {
   for (const Family& family : benchmark_families()) {
     for (const int size : family.sizes) {
@@ -270,6 +302,9 @@ void register_all(const std::string& engine_list) {
       if (sizes.size() > 1) b->Complexity(benchmark::oN);
     }
   }
+#ifdef CHAINBENCH_BOX2D3_PLAIN
+  if (engine_list.empty()) register_plain_box2d3();
+#endif
   // The harness' cost, at every size the engine under test runs at.
   for (const auto& [spec, max_bodies] : engines) {
     if (spec.label() == subject.label()) register_harness(spec, max_bodies);

@@ -30,6 +30,10 @@ Result chainbench(const std::string& args) {
   return r;
 }
 
+// The engines that run when none are named: chain, chain:variant=seed2014, box2d, chipmunk, and
+// box2d3 when it is built (tests/CMakeLists.txt).
+constexpr std::size_t kDefaultEngines = 4 + CHAINBENCH_BOX2D3_BUILT;
+
 std::string temp(const std::string& name) {
   return ::testing::TempDir() + "chainbench_cli_" + name;
 }
@@ -46,8 +50,8 @@ TEST(Cli, RunWritesTheDesignJsonAndNothingMovesAgainstAWall) {
   EXPECT_EQ(j["scene"]["name"], "push_into_wall");
   EXPECT_EQ(j["scene"]["bodies"], 6);
   EXPECT_EQ(j["scene"]["steps"], 60);
-  // chain, chain seed2014, box2d (the reference, among them), chipmunk
-  ASSERT_EQ(j["runs"].size(), 4u);
+  // chain, chain seed2014, box2d (the reference, among them), chipmunk, and box2d3 when built
+  ASSERT_EQ(j["runs"].size(), kDefaultEngines);
   const double start[] = {0, 1, 2, 3, 4, 5};
   for (const auto& run : j["runs"]) {
     SCOPED_TRACE(run["engine"].get<std::string>());
@@ -78,7 +82,7 @@ TEST(Cli, RunWritesTheDesignJsonAndNothingMovesAgainstAWall) {
       EXPECT_NEAR(run["final_positions"][i][1].get<double>(), 0.0, tolerance) << "body " << i;
     }
   }
-  ASSERT_EQ(j["comparison"].size(), 3u);
+  ASSERT_EQ(j["comparison"].size(), kDefaultEngines - 1);
   EXPECT_EQ(j["comparison"][0]["reference"],
             "box2d:vel_iters=8,pos_iters=3,substeps=1,skin=compensate,warm=1,ccd=1,sleep=0");
   EXPECT_LT(j["comparison"][0]["final_position_error"]["max"].get<double>(), 0.03);
@@ -382,7 +386,7 @@ TEST(Cli, ExampleSceneFilesRunAndModernChainingMeetsTheirExpectations) {
     ASSERT_EQ(r.status, 0) << r.out;
     nlohmann::json j;
     std::ifstream(json_path) >> j;
-    ASSERT_EQ(j["runs"].size(), 4u);
+    ASSERT_EQ(j["runs"].size(), kDefaultEngines);
     for (const auto& run : j["runs"])
       EXPECT_TRUE(run["metrics"]["stable"].get<bool>());
     const auto& modern = j["runs"][0];
@@ -402,7 +406,7 @@ TEST(Cli, QuickStressWritesAVerdictForEveryCaseAndEngine) {
   std::ifstream(json_path) >> j;
   EXPECT_EQ(j["schema"], "chainbench.stress/1");
   EXPECT_TRUE(j["quick"].get<bool>());
-  ASSERT_EQ(j["cases"].size(), 2u * 4u);  // two cases, four default engines
+  ASSERT_EQ(j["cases"].size(), 2u * kDefaultEngines);  // two cases, every default engine
   for (const auto& c : j["cases"]) {
     SCOPED_TRACE(c["case"].get<std::string>() + " " + c["engine"].get<std::string>());
     for (const char* key :
@@ -419,8 +423,9 @@ TEST(Cli, QuickStressWritesAVerdictForEveryCaseAndEngine) {
     }
   }
   // The box between floor and ceiling is crushed every step, which the chain engines count.
-  ASSERT_EQ(j["cases"][4]["label"], "chain");
-  EXPECT_GT(j["cases"][4]["crush_events"].get<int>(), 0) << j["cases"][4]["case"];
+  const auto& squeezed = j["cases"][kDefaultEngines];  // the second case's first engine
+  ASSERT_EQ(squeezed["label"], "chain");
+  EXPECT_GT(squeezed["crush_events"].get<int>(), 0) << squeezed["case"];
   // The table prints every class it met, and what each rests on.
   EXPECT_NE(r.out.find("runs:"), std::string::npos) << r.out;
 }
@@ -607,8 +612,10 @@ TEST(Cli, DefaultsInAnEngineListStandForTheDefaultEngines) {
   for (const auto& run : j["runs"])
     labels.push_back(run["label"]);
   // The defaults in their order, the ones named after them; chain, named again, runs once.
-  EXPECT_EQ(labels, (std::vector<std::string>{"chain:variant=seed2014", "box2d", "chipmunk",
-                                              "chipmunk:sleep=1", "chain"}));
+  std::vector<std::string> expected = {"chain:variant=seed2014", "box2d", "chipmunk"};
+  if (CHAINBENCH_BOX2D3_BUILT) expected.push_back("box2d3");
+  expected.insert(expected.end(), {"chipmunk:sleep=1", "chain"});
+  EXPECT_EQ(labels, expected);
   for (const auto& run : j["runs"]) {
     const bool chipmunk = run["engine"].get<std::string>().rfind("chipmunk", 0) == 0;
     EXPECT_EQ(run.contains("caveat"), chipmunk) << run["label"];

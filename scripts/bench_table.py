@@ -233,6 +233,11 @@ def caveat_marks(context, engines):
     return marks, [f"{mark} {text}." for text, mark in notes.items()]
 
 
+def times_faster(v):
+    """"0.004x", "0.5x", "25.0x": two significant digits below 0.1, else one decimal."""
+    return f"{v:.2g}x" if v < 0.1 else f"{v:.1f}x"
+
+
 def times(b):
     return f"{fmt_ms(b[0])} against {fmt_ms(b[1])} ms"
 
@@ -258,10 +263,10 @@ def summary(context, runs, subject):
                 continue
             (low, lf, ls), (high, hf, hs) = r[0], r[-1]
             mid = r[len(r) // 2][0] if len(r) % 2 else (r[len(r) // 2 - 1][0] + r[len(r) // 2][0]) / 2
-            parts.append(f"`{e}`{marks.get(e, '')} {low:.1f}x ({row_label(recipes, lf, ls)}) to "
-                         f"{high:.1f}x ({row_label(recipes, hf, hs)}), median {mid:.1f}x"
-                         if len(r) > 1 else
-                         f"`{e}`{marks.get(e, '')} {low:.1f}x ({row_label(recipes, lf, ls)})")
+            parts.append(f"`{e}`{marks.get(e, '')} {times_faster(low)} ({row_label(recipes, lf, ls)}) "
+                         f"to {times_faster(high)} ({row_label(recipes, hf, hs)}), median "
+                         f"{times_faster(mid)}" if len(r) > 1 else
+                         f"`{e}`{marks.get(e, '')} {times_faster(low)} ({row_label(recipes, lf, ls)})")
         return "; ".join(parts)
 
     out = [f"**`{subject}` against every engine, with sleeping off and on.** How many times faster "

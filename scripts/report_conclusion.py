@@ -15,6 +15,9 @@ def fmt(value, digits=2):
 
 
 def ratio(value):
+    """"0.004x", "0.5x", "2.5x", "25x": two significant digits below 0.1, one decimal below 10."""
+    if value < 0.1:
+        return f"{value:.2g}x"
     return f"{value:.1f}x" if value < 10 else f"{value:.0f}x"
 
 

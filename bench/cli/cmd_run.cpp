@@ -61,6 +61,11 @@ int run_scene(const RunArgs& a) {
   for (const std::string& text : a.require) {
     EngineSpec spec = parse_engine_spec(text);
     if (std::find(engines.begin(), engines.end(), spec) == engines.end()) {
+      // A default the scene rules out: say why, not merely that it is missing.
+      for (const auto& [out, why] : choice.left_out) {
+        if (out == spec)
+          throw InputError("--require " + text + ": left out of the default engines, " + why);
+      }
       throw InputError("--require " + text + ": not among the engines run (" +
                        (a.engines.empty() ? default_engine_list() : a.engines) + ")");
     }
@@ -96,7 +101,10 @@ int run_scene(const RunArgs& a) {
   RunReport report;
   report.scene = &scene;
   auto run_one = [&](const EngineSpec& spec) {
-    options.progress = [&](int done, int total) { progress.update(spec.str(), done, total); };
+    // The label the table uses, not the canonical spec: that one fills the line with defaults.
+    options.progress = [&](int done, int total) {
+      progress.update(scene.name + ": " + spec.label(), done, total);
+    };
     EngineRun r = run_engine(scene, spec, options);
     progress.clear();
     return r;

@@ -21,6 +21,7 @@ EngineChoice choose_engines(const std::string& list, const std::vector<const Sce
       throw InputError(why + " (--engines " + list + ")");
     } else {
       choice.notes.push_back(spec.label() + " left out: " + why);
+      choice.left_out.emplace_back(std::move(spec), std::move(why));
     }
   }
   if (choice.engines.empty()) throw InputError("no default engine can run this scene");

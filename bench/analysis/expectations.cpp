@@ -176,7 +176,14 @@ ExpectResult ExpectationCheck::result() const {
         break;
     }
     if (o.state < 0) o.margin = HUGE_VAL;
-    o.near = !o.pass && o.limit > 0.0 && o.margin <= 0.1 * o.limit;
+    // Bounds allow nothing: a miss is near against the share of the body's size that is visibly
+    // wrong (5% of its smaller edge, as the default penetration tolerance), 6e-8 m not being 2 m.
+    double scale = o.limit;
+    if (e.kind == Kind::kBounds && o.body) {
+      const Vec2d h = scene_.bodies[*o.body].half_extents;
+      scale = 0.05 * 2.0 * std::min(h.x, h.y);
+    }
+    o.near = !o.pass && scale > 0.0 && o.margin <= 0.1 * scale;
     if (is_speed(e.kind)) {
       r.has_speed = true;
       r.max_speed_error = std::max(r.max_speed_error, error);

@@ -32,8 +32,8 @@ struct ExpectOutcome {
   bool pass = true;
   // What the entry allows (center, moved: its tolerance; at_rest: its speed; no_overlap: its
   // depth; bounds: 0), how far the worst state went beyond it (negative while it holds), and
-  // whether a failure is a near miss: beyond it by at most a tenth of it (never for bounds, which
-  // allow nothing). Units as `value`.
+  // whether a failure is a near miss: beyond it by at most a tenth of it (bounds, which allow
+  // nothing: a tenth of 5% of the body's smaller edge). Units as `value`.
   double limit = 0.0;
   double margin = 0.0;
   bool near = false;

@@ -151,6 +151,17 @@ TEST(VerdictDetail, NearMissesAreToldFromClearOnes) {
   const EngineRun clear = run(s, "chain");
   EXPECT_FALSE(clear.expect->near_miss);
   EXPECT_FALSE(clear.verdict->near_miss());
+  // Bounds allow nothing: 6e-8 m outside is near against the box's size (5% of 1 m, a tenth of
+  // that: 5 mm), 2 m is not.
+  for (const double beyond : {6e-8, 2.0}) {
+    Scene b = drifting_box();
+    b.expect = {Expectation{}};
+    b.expect[0].kind = Expectation::Kind::kBounds;
+    b.expect[0].max_x = 1.0 - beyond;  // the box ends at x = 1
+    const EngineRun r = run(b, "chain");
+    ASSERT_FALSE(r.expect->pass) << beyond;
+    EXPECT_EQ(r.expect->entries[0].near, beyond < 1.0) << beyond;
+  }
   // The stress tallies count them apart.
   StressVerdict a, b;
   a.finished = b.finished = true;

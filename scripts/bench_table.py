@@ -16,7 +16,8 @@ A speed claim never stands without its accuracy: with --accuracy, the headline g
 error against the moving scenes' stated answers beside its speed, and each row of the results table
 the subject's final-position error against the reference and which engines meet the answer.
 
-The tables, in order: the headline (the moving scenes, where every engine works each step), the
+The tables, in order: the summary (the subject against every engine, sleeping on and off, and
+every row where it loses), the headline (the moving scenes, where every engine works each step), the
 results (time per step of every engine on every row), the work and memory behind them (contacts
 per step and heap held per body), the subject's scaling per family, and the harness' cost.
 """
@@ -209,6 +210,76 @@ def headline(context, runs, accuracy, subject):
     return out + [""]
 
 
+MARKS = ("†", "‡", "§", "¶")
+
+
+def caveat_marks(context, engines):
+    """{label: mark} for the engines whose times carry a caveat (chainbench_caveat_NAME in the
+    benchmark's context), and the notes that explain the marks."""
+    notes, marks = {}, {}
+    for e in engines:
+        text = context.get(f"chainbench_caveat_{e.partition(':')[0]}")
+        if text:
+            marks[e] = notes.setdefault(text, MARKS[len(notes) % len(MARKS)])
+    return marks, [f"{mark} {text}." for text, mark in notes.items()]
+
+
+def times(b):
+    return f"{fmt_ms(b[0])} against {fmt_ms(b[1])} ms"
+
+
+def summary(context, runs, subject):
+    """The sentences that open the results: on the rows both ran, how many times faster the
+    subject steps than each engine (sleeping on and off alike, as the labels say), on the moving
+    scenes and the others, and every row where an engine steps faster than the subject, in words."""
+    recipes = family_recipes(context)
+    engines, groups = ordered(runs)
+    others = [e for e in engines if e != subject]
+    if subject not in engines or not others:
+        return []
+    moving = set(listed(context, "chainbench_moving"))
+    marks, notes = caveat_marks(context, others)
+
+    def span(rows):
+        parts = []
+        for e in others:
+            r = sorted((ms(runs[(f, e, sz)]) / ms(runs[(f, subject, sz)]), f, sz) for f, sz in rows
+                       if (f, e, sz) in runs and (f, subject, sz) in runs)
+            if not r:
+                continue
+            (low, lf, ls), (high, hf, hs) = r[0], r[-1]
+            mid = r[len(r) // 2][0] if len(r) % 2 else (r[len(r) // 2 - 1][0] + r[len(r) // 2][0]) / 2
+            parts.append(f"`{e}`{marks.get(e, '')} {low:.1f}x ({row_label(recipes, lf, ls)}) to "
+                         f"{high:.1f}x ({row_label(recipes, hf, hs)}), median {mid:.1f}x"
+                         if len(r) > 1 else
+                         f"`{e}`{marks.get(e, '')} {low:.1f}x ({row_label(recipes, lf, ls)})")
+        return "; ".join(parts)
+
+    out = [f"**`{subject}` against every engine, with sleeping off and on.** How many times faster "
+           f"`{subject}` steps, on the rows of the table below that both ran"]
+    moving_rows = [g for g in groups if g[0] in moving]
+    other_rows = [g for g in groups if g[0] not in moving]
+    if moving_rows and other_rows:
+        out[0] += (f": on the moving scenes, {span(moving_rows)}; on the scenes that come to rest "
+                   f"or are pushed, {span(other_rows)}.")
+    else:
+        out[0] += f": {span(groups)}."
+    lost = sorted(((ms(runs[(f, subject, sz)]) / ms(runs[(f, e, sz)]), e, f, sz)
+                   for f, sz in groups for e in others
+                   if (f, e, sz) in runs and (f, subject, sz) in runs
+                   and ms(runs[(f, e, sz)]) < ms(runs[(f, subject, sz)])), reverse=True)
+    if lost:
+        out[0] += (f" **Where `{subject}` loses:** " + "; ".join(
+            f"`{e}`{marks.get(e, '')} steps {row_label(recipes, f, sz)} {faster:.1f}x faster "
+            f"({times((ms(runs[(f, e, sz)]), ms(runs[(f, subject, sz)])))} per step)"
+            for faster, e, f, sz in lost) + ".")
+    else:
+        out[0] += f" No engine steps any row faster than `{subject}`."
+    if notes:
+        out[0] += " " + " ".join(notes)
+    return out + [""]
+
+
 def results_table(context, runs, accuracy, subject, reference):
     """Time per step of every engine on every row, the reference over the subject, the subject's
     error and who meets the answer (with accuracy runs), and the subject's time per body."""
@@ -331,7 +402,8 @@ def tables(context, runs, accuracy=None):
     engines, _ = ordered(runs)
     subject = context.get("chainbench_subject", engines[0] if engines else "")
     reference = context.get("chainbench_reference", "")
-    out = headline(context, runs, accuracy, subject)
+    out = summary(context, runs, subject)
+    out += headline(context, runs, accuracy, subject)
     out += results_table(context, runs, accuracy, subject, reference)
     out += work_table(context, runs)
     out += scaling_tables(context, runs, subject)

@@ -32,7 +32,8 @@ def main(argv=None):
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     commands = {  # name: (loader, plotter, input, made by, help)
         "sweep": (load_sweep, plot_sweep, "SWEEP_JSON", "chainbench sweep --json",
-                  "sweep_<scene>.png: per scene, error against ms/step of every setting"),
+                  "sweep_<scene>.png: per scene, error against ms/step of every setting; "
+                  "sweep_<scene>_by_<key>.png: every value of sweep --vary in one"),
         "scaling": (load_bench, plot_scaling, "BENCH_JSON", "chainbench_bench "
                     "--benchmark_format=json", "scaling.png: ms/step against body count"),
         "states": (load_run, plot_states, "RUN_JSON", "chainbench run --json",

@@ -29,29 +29,103 @@ def names(items, limit=4):
     return ", ".join(shown) + (f" and {len(items) - limit} more" if len(items) > limit else "")
 
 
-def speed(runs, labels, subject):
-    """The engine under test's time per step against each other engine's, over the scenes."""
-    fastest = {lb: 0 for lb in labels}
-    ratios = {lb: [] for lb in labels if lb != subject}
+MARKS = ("†", "‡", "§", "¶")
+
+
+def caveats(runs):
+    """{label: mark} for every engine whose runs carry a caveat, and the notes, one per caveat."""
+    marks, notes = {}, {}
+    for run in runs:
+        for r in all_runs(run):
+            if r.get("caveat"):
+                mark = notes.setdefault(r["caveat"], MARKS[len(notes) % len(MARKS)])
+                marks[r["label"]] = mark
+    return marks, [f"{mark} {text}." for text, mark in notes.items()]
+
+
+def moving(run):
+    return run["scene"].get("family") == "moving"
+
+
+def ratios_of(runs, labels, subject):
+    """{label: [(its ms over the subject's, scene, its ms, the subject's ms)]}, over the scenes
+    both ran."""
+    out = {lb: [] for lb in labels if lb != subject}
     for run in runs:
         ms = {r["label"]: r["ms_per_step"]["median"] for r in all_runs(run)}
-        if not ms:
-            continue
-        fastest[min(ms, key=ms.get)] += 1
-        for lb in ratios:
+        for lb in out:
             if lb in ms and ms.get(subject):
-                ratios[lb].append((ms[lb] / ms[subject], run["scene"]["name"]))
+                out[lb].append((ms[lb] / ms[subject], run["scene"]["name"], ms[lb], ms[subject]))
+    return out
+
+
+def ranges(ratios, marks):
+    """"`b` 1.2x (`x`) to 9x (`y`), median 3x" for each engine."""
     parts = []
     for lb, values in ratios.items():
         if not values:
             continue
         low, high = min(values), max(values)
-        parts.append(f"`{lb}` {ratio(low[0])} (`{low[1]}`) to {ratio(high[0])} (`{high[1]}`), "
-                     f"median {ratio(statistics.median(v for v, _ in values))}")
+        if len(values) == 1:
+            parts.append(f"`{lb}`{marks.get(lb, '')} {ratio(low[0])} (`{low[1]}`)")
+            continue
+        parts.append(f"`{lb}`{marks.get(lb, '')} {ratio(low[0])} (`{low[1]}`) to "
+                     f"{ratio(high[0])} (`{high[1]}`), median "
+                     f"{ratio(statistics.median(v for v, *_ in values))}")
+    return "; ".join(parts)
+
+
+def speed(runs, labels, subject):
+    """The engine under test's time per step against each other engine's (sleeping or not, as
+    the runs' labels say), on the resting and on the moving scenes, and where it loses."""
+    fastest = {lb: 0 for lb in labels}
+    for run in runs:
+        ms = {r["label"]: r["ms_per_step"]["median"] for r in all_runs(run)}
+        if ms:
+            fastest[min(ms, key=ms.get)] += 1
+    marks, notes = caveats(runs)
     top = max(fastest, key=fastest.get)
-    return fastest, (f"**Speed.** `{top}` takes the least time per step on {fastest[top]} of "
-                     f"{len(runs)} scenes. The others take, per step, this many times "
-                     f"`{subject}`'s time: " + "; ".join(parts) + ".")
+    text = (f"**Speed.** `{top}` takes the least time per step on {fastest[top]} of {len(runs)} "
+            f"scenes. The others take, per step, this many times `{subject}`'s time")
+    resting, motion = [r for r in runs if not moving(r)], [r for r in runs if moving(r)]
+    if resting and motion:
+        text += "." + "".join(
+            f" {where}: {ranges(ratios_of(group, labels, subject), marks)}."
+            for where, group in (("On the moving scene" + ("s" if len(motion) > 1 else "") +
+                                  " (family `moving`, every body at work each step)", motion),
+                                 (f"On the other {len(resting)}", resting)))
+    else:
+        text += f": {ranges(ratios_of(runs, labels, subject), marks)}."
+    if notes:
+        text += " " + " ".join(notes)
+    return fastest, text
+
+
+def losses(runs, labels, subject):
+    """Every scene on which an engine steps faster than the engine under test, in as many
+    words; the worst first."""
+    marks, _ = caveats(runs)
+    lost = sorted(((1 / v, lb, name, their, mine)
+                   for lb, values in ratios_of(runs, labels, subject).items()
+                   for v, name, their, mine in values if v < 1), reverse=True)
+    if not lost:
+        return (f"**Where `{subject}` loses.** Nowhere here: no engine steps any of these "
+                f"scenes faster.")
+    by_engine = {}
+    for faster, lb, name, their, mine in lost:
+        by_engine.setdefault(lb, []).append(
+            f"`{name}` {ratio(faster)} faster ({fmt(their)} against {fmt(mine)} ms per step)")
+    return (f"**Where `{subject}` loses.** " + "; ".join(
+        f"`{lb}`{marks.get(lb, '')} steps " + names_of(parts) for lb, parts in by_engine.items())
+        + ".")
+
+
+def names_of(parts, limit=4):
+    """"a, b and c", at most `limit` of them, then how many more."""
+    shown = parts[:limit]
+    more = len(parts) - len(shown)
+    text = ", ".join(shown[:-1]) + (" and " if len(shown) > 1 else "") + shown[-1]
+    return text + (f", and {more} more scenes" if more else "")
 
 
 def accuracy(runs, labels):
@@ -157,7 +231,7 @@ def conclusion(runs, stress=None, sweep=None):
     fastest, speed_text = speed(runs, labels, subject)
     stress_table, stress_text = breaks(stress, labels)
     lines = ["## Conclusion", "", f"- {pick(runs, subject, right, fastest, stress_table)}",
-             f"- {speed_text}", f"- {right_text}"]
+             f"- {speed_text}", f"- {losses(runs, labels, subject)}", f"- {right_text}"]
     if stress_text:
         lines.append(f"- {stress_text}")
     sweep_text = front(sweep)

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, runs the default comparison suite and writes results/:
-#   results/runs/<scene>.{json,csv}    chainbench run, every engine, every default scene and
+#   results/runs/<scene>.{json,csv}    chainbench run, every engine with sleeping off and on,
+#                                      every default scene (the moving ones included) and
 #                                      every example scene file in bench/examples/
 #   results/stress.{json,txt}          chainbench stress, the full matrix
 #   results/traces/<scene>.csv         per-step traces of a few small scenes
@@ -39,15 +40,22 @@ start=$SECONDS
 say() { echo "run.sh: $* ($((SECONDS - start)) s)" >&2; }
 
 scenes=(stack pyramid many_pyramids mass_ratio_stack heavy_on_light overlap_recovery random_pile
-        push_row push_into_wall push_stack squeeze seed_stack seed_squeeze seed_falling_row)
+        push_row push_into_wall push_stack squeeze seed_stack seed_squeeze seed_falling_row
+        rain smash bulldozer)
 traced=(stack overlap_recovery push_stack squeeze seed_squeeze)
+# Every reference as games ship it and as it runs by default: sleeping on and off (and Box2D v3
+# where it is built), so that the report's ratios answer against each.
+engines=defaults,box2d:sleep=1,chipmunk:sleep=1
+if "$cb" engines | grep -q '^box2d3:'; then
+  engines+=,box2d3,box2d3:sleep=1
+fi
 for scene in "${scenes[@]}"; do
   say "run $scene"
   trace=()
   for t in "${traced[@]}"; do
     [[ "$t" == "$scene" ]] && trace=(--trace "$out/traces/$scene.csv")
   done
-  "$cb" run --scene "$scene" --json "$out/runs/$scene.json" --csv "$out/runs/$scene.csv" "${trace[@]}" \
+  "$cb" run --scene "$scene" --engines "$engines" --json "$out/runs/$scene.json" --csv "$out/runs/$scene.csv" "${trace[@]}" \
     --replay "$out/replay/$scene.html" > "$out/runs/$scene.txt"
 done
 
@@ -56,7 +64,7 @@ for file in bench/examples/*.json; do
   scene=$(basename "$file" .json)
   files+=("$scene")
   say "run $file"
-  "$cb" run --scene-file "$file" --json "$out/runs/$scene.json" --csv "$out/runs/$scene.csv" \
+  "$cb" run --scene-file "$file" --engines "$engines" --json "$out/runs/$scene.json" --csv "$out/runs/$scene.csv" \
     --replay "$out/replay/$scene.html" > "$out/runs/$scene.txt"
 done
 

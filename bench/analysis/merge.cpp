@@ -256,6 +256,7 @@ Merged merge_stress(const std::vector<ShardPart>& parts, const std::vector<Block
       throw InputError(parts[k].file + ": --quick differs from " + parts.front().file);
     for (std::size_t c = 0; c < list.size(); ++c)
       cases[blocks[k].ran[c]] = list[c];
+    if (parts[k].json.value("interrupted", false)) m.json["interrupted"] = true;
   }
   ordered_json list = ordered_json::array();
   for (auto& [unit, c] : cases) {

@@ -131,9 +131,9 @@ ordered_json expectation_json(const Scene& s, const Expectation& e) {
 void compare(RunReport& report) {
   report.comparison.clear();
   const EngineRun* ref = reference_run(report);
-  if (!ref) return;
+  if (!ref || ref->failure) return;
   for (const EngineRun& run : report.runs) {
-    if (&run == ref) continue;
+    if (&run == ref || run.failure) continue;  // a run that failed has no positions
     Comparison c;
     c.engine = run.engine;
     c.reference = ref->engine;
@@ -215,6 +215,21 @@ Asked asked_speed(const RunReport& r) {
   return a;
 }
 
+ordered_json verdict_json(const Verdict& v) {
+  ordered_json findings = ordered_json::array();
+  for (const Finding& f : v.findings) {
+    ordered_json finding = {{"class", to_string(f.what)}, {"detail", f.detail}};
+    if (f.margin) finding["margin"] = json_number(*f.margin);
+    if (f.tolerance) finding["tolerance"] = json_number(*f.tolerance);
+    if (f.margin || f.near) finding["near_miss"] = f.near;
+    findings.push_back(std::move(finding));
+  }
+  return {{"class", to_string(v.worst)},
+          {"detail", v.findings.empty() ? "" : v.findings[0].detail},
+          {"near_miss", v.near_miss()},
+          {"findings", std::move(findings)}};
+}
+
 }  // namespace
 
 std::vector<LimitNote> exceeded_limits(const RunReport& r) {
@@ -240,6 +255,7 @@ void print_run_table(std::ostream& out, const RunReport& r) {
   out << "scene " << s.name << ": " << s.bodies.size() << " bodies, " << s.steps << " steps of "
       << fmt_g(s.dt, 4) << " s";
   if (r.reference_spec) out << "; reference " << r.reference_spec->label();
+  if (r.interrupted) out << " (interrupted: the engines that finished)";
   out << "\n\n";
   const bool expect = !s.expect.empty();
   bool expect_m = false, expect_speed = false;
@@ -257,6 +273,13 @@ void print_run_table(std::ostream& out, const RunReport& r) {
   TextTable t(header);
   auto add = [&](const EngineRun& run, bool is_reference) {
     const Comparison* c = comparison_of(r, run);
+    if (run.failure) {  // crash or hang: nothing was measured
+      std::vector<std::string> row(header.size(), "-");
+      row.front() = run.spec.label() + (is_reference ? " (ref)" : "");
+      row.back() = to_string(run.verdict->worst);
+      t.add(row);
+      return;
+    }
     std::vector<std::string> row = {run.spec.label() + (is_reference ? " (ref)" : ""),
                                     fmt_ms(run.timing.median_ms), fmt_ms(run.timing.max_ms),
                                     c ? fmt_g(c->speedup, 3) : (is_reference ? "1" : "-")};
@@ -306,6 +329,7 @@ ordered_json run_json(const RunReport& r) {
   j["schema"] = "chainbench.run/1";
   j["scene"] = {{"name", s.name}, {"bodies", s.bodies.size()}, {"steps", s.steps}, {"dt", s.dt}};
   if (!s.description.empty()) j["scene"]["description"] = s.description;
+  if (!s.family.empty()) j["scene"]["family"] = s.family;
   // Sizes and kinds in scene order, so that tools can draw the final states.
   ordered_json half = ordered_json::array(), kinds = ordered_json::array();
   ordered_json names = ordered_json::array(), centers = ordered_json::array();
@@ -326,12 +350,20 @@ ordered_json run_json(const RunReport& r) {
   }
   if (s.penetration_tolerance) j["scene"]["penetration_tolerance"] = *s.penetration_tolerance;
   if (r.reference_spec) j["reference"] = r.reference_spec->str();
+  j["interrupted"] = r.interrupted;
   const std::vector<LimitNote> limit_notes = exceeded_limits(r);
   auto run_entry = [&](const EngineRun& run) {
     ordered_json e;
     e["engine"] = run.engine;
     e["label"] = run.spec.label();
     e["gate"] = is_gate(run.spec);  // the setting under test (registry.h)
+    if (const std::string& caveat = engine_def(run.spec.engine).caveat; !caveat.empty())
+      e["caveat"] = caveat;
+    if (run.failure) {  // its child process crashed or hung: nothing was measured
+      e["failure"] = *run.failure;
+      e["verdict"] = verdict_json(*run.verdict);
+      return e;
+    }
     ordered_json positions = ordered_json::array();
     for (const Vec2d& p : run.final_positions)
       positions.push_back({json_number(p.x), json_number(p.y)});
@@ -408,21 +440,7 @@ ordered_json run_json(const RunReport& r) {
     }
     if (!exceeded.empty()) e["limits_exceeded"] = std::move(exceeded);
     if (run.expect) e["expect"] = expect_result_json(s, *run.expect);
-    if (run.verdict) {
-      ordered_json findings = ordered_json::array();
-      for (const Finding& f : run.verdict->findings) {
-        ordered_json finding = {{"class", to_string(f.what)}, {"detail", f.detail}};
-        if (f.margin) finding["margin"] = json_number(*f.margin);
-        if (f.tolerance) finding["tolerance"] = json_number(*f.tolerance);
-        if (f.margin || f.near) finding["near_miss"] = f.near;
-        findings.push_back(std::move(finding));
-      }
-      e["verdict"] = {
-          {"class", to_string(run.verdict->worst)},
-          {"detail", run.verdict->findings.empty() ? "" : run.verdict->findings[0].detail},
-          {"near_miss", run.verdict->near_miss()},
-          {"findings", std::move(findings)}};
-    }
+    if (run.verdict) e["verdict"] = verdict_json(*run.verdict);
     return e;
   };
   j["runs"] = ordered_json::array();

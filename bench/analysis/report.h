@@ -28,6 +28,7 @@ struct RunReport {
   std::optional<EngineRun> reference;        // the reference run, when it was not one of `runs`
   std::optional<EngineSpec> reference_spec;  // none: no reference
   std::vector<Comparison> comparison;        // each run against the reference, in run order
+  bool interrupted = false;  // Ctrl-C: `runs` holds the engines that finished before it
 };
 
 // An engine limit (registry.h) the run's scene exceeds: the engine's label, the limit as listed

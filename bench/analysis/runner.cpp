@@ -1,5 +1,6 @@
 #include "runner.h"
 
+#include "isolated_run.h"
 #include "state_feed.h"
 
 #include <algorithm>
@@ -57,6 +58,8 @@ std::optional<bool> EngineRun::stable() const {
 }
 
 EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOptions& options) {
+  if (options.isolate && engine_def(spec.engine).isolated)
+    return run_engine_in_child(scene, spec, options);
   EngineRun run;
   run.spec = spec;
   run.engine = spec.str();

@@ -14,6 +14,7 @@
 #include "verdict.h"
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -51,6 +52,10 @@ struct EngineRun {
   std::optional<ExpectResult> expect;
   std::optional<Verdict> verdict;  // judged when stability and penetration were measured
   bool interrupted = false;        // stopped before its last step
+  // Set when the run's child process (isolated_run.h) crashed, hung or exited without its result:
+  // why ("died of signal 11 (SIGSEGV)"); the run then holds no figures, and its verdict is crash
+  // or hang.
+  std::optional<std::string> failure;
 
   // Finite, no body escaped, no blow-up, no body through another, and no step cut short; empty
   // when not measured.
@@ -70,6 +75,10 @@ struct RunOptions {
   std::function<void(int, int)> progress;
   // When set, the run stops after the current step and is marked interrupted.
   const std::atomic<bool>* stop = nullptr;
+  // Engines whose code the harness does not own (EngineDef::isolated: plugins) run in a child
+  // process (isolated_run.h), killed after timeout_s seconds; built-in engines run in process.
+  bool isolate = false;
+  double timeout_s = HUGE_VAL;
 };
 
 // The figures of a run's step times (ms, any order): median, mean, p95 and p99 by nearest rank,

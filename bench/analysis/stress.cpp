@@ -160,7 +160,8 @@ bool StressVerdict::fatal() const {
          known_failure.empty();
 }
 
-StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, double timeout_s) {
+StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, double timeout_s,
+                              const std::atomic<bool>* stop) {
   StressVerdict v;
   v.case_label = c.label();
   v.group = c.group;
@@ -174,8 +175,9 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
     // A case that cannot be built: the child says why, as an error verdict.
   }
   Summary s{};
-  const ChildOutcome child = run_in_child([&] { return summarize_case(c, engine); }, s, timeout_s);
-  v.finished = child.finished, v.hang = child.hang;
+  const ChildOutcome child =
+      run_in_child([&] { return summarize_case(c, engine); }, s, timeout_s, stop);
+  v.finished = child.finished, v.hang = child.hang, v.interrupted = child.interrupted;
   v.signal = child.signal, v.exit_status = child.exit_status;
   v.wall_s = child.wall_s;
   if (!v.finished) return v;  // a crash or a hang is never a known failure
@@ -247,11 +249,13 @@ void print_stress_table(std::ostream& out, const std::vector<StressVerdict>& ver
   }
 }
 
-nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, bool quick) {
+nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, bool quick,
+                                   bool interrupted) {
   using nlohmann::ordered_json;
   ordered_json j;
   j["schema"] = "chainbench.stress/1";
   j["quick"] = quick;
+  j["interrupted"] = interrupted;
   j["cases"] = ordered_json::array();
   for (const StressVerdict& v : verdicts) {
     ordered_json c;

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <ostream>
 #include <string>
@@ -32,6 +33,7 @@ struct StressVerdict {
   EngineSpec engine;
   bool finished = false;  // false: the child crashed or ran out of time
   bool hang = false;
+  bool interrupted = false;                 // stopped by Ctrl-C before it finished
   int signal = 0;                           // the signal that ended the child, if one did
   int exit_status = 0;                      // or its exit status, if it exited without a result
   std::string error;                        // the run failed with an exception in the child
@@ -60,10 +62,14 @@ struct StressVerdict {
   bool fatal() const;
 };
 
-// Runs one case in one engine in a child process, killed after `timeout_s` seconds.
-StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, double timeout_s);
+// Runs one case in one engine in a child process, killed after `timeout_s` seconds, or as soon as
+// `stop` is set (then the verdict's `interrupted` is set and it says nothing of the engine).
+StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, double timeout_s,
+                              const std::atomic<bool>* stop = nullptr);
 
 void print_stress_table(std::ostream& out, const std::vector<StressVerdict>& verdicts);
-nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, bool quick);
+// `interrupted`: Ctrl-C stopped the matrix; `verdicts` are the runs that finished before it.
+nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, bool quick,
+                                   bool interrupted = false);
 
 }  // namespace chainbench

@@ -37,6 +37,8 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
   result.steps = scene.steps;
   RunOptions run_options;  // every metric
   run_options.stop = options.stop;
+  run_options.isolate = true;  // a plugin that dies is its point's crash row
+  run_options.timeout_s = options.timeout_s;
   const bool use_expect = !scene.expect.empty();
   auto included = [&](std::size_t j) { return options.include.empty() || options.include[j]; };
   const int points =
@@ -72,9 +74,13 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
     SweepPoint point;
     point.run = run_engine(scene, spec, run_options);
     if (point.run.interrupted) break;  // a half-run point says nothing; keep the others
-    point.error = use_expect ? expectation_error(scene, *point.run.expect)
-                             : position_error(scene, point.run.final_positions,
-                                              result.reference_run->final_positions);
+    if (point.run.failure || (!use_expect && result.reference_run->failure)) {
+      point.error = {HUGE_VAL, HUGE_VAL};  // nothing to measure (a crash or a hang)
+    } else {
+      point.error = use_expect ? expectation_error(scene, *point.run.expect)
+                               : position_error(scene, point.run.final_positions,
+                                                result.reference_run->final_positions);
+    }
     result.points.push_back(std::move(point));
     ++done;
   }
@@ -119,8 +125,12 @@ void mark_pareto(std::vector<SweepPoint>& points) {
   }
 }
 
+std::string sweep_scene_label(const SweepResult& r) {
+  return r.variant ? r.scene + " (" + r.variant->key + "=" + r.variant->text + ")" : r.scene;
+}
+
 void print_sweep_table(std::ostream& out, const SweepResult& r) {
-  out << "scene " << r.scene << ": " << r.bodies << " bodies, " << r.steps
+  out << "scene " << sweep_scene_label(r) << ": " << r.bodies << " bodies, " << r.steps
       << " steps; error against "
       << (r.reference == "expect" ? "the scene's expectations" : r.reference_label)
       << (r.interrupted ? " (interrupted: the points measured so far)" : "") << "\n\n";
@@ -129,6 +139,11 @@ void print_sweep_table(std::ostream& out, const SweepResult& r) {
   auto opt = [](const std::optional<double>& v) { return v ? fmt_g(*v) : std::string("-"); };
   for (const SweepPoint& p : r.points) {
     const auto stable = p.run.stable();
+    if (p.run.failure) {  // crash or hang: nothing was measured
+      t.add({p.run.spec.label(), "-", "-", "-", "-", "-", "-", "-", to_string(p.run.verdict->worst),
+             ""});
+      continue;
+    }
     t.add({p.run.spec.label(), fmt_ms(p.run.timing.median_ms), fmt_ms(p.run.timing.spread_ms),
            fmt_g(p.error.max), fmt_g(p.error.rms), opt(p.run.metrics.efd_per_body_step),
            opt(p.run.metrics.max_penetration), stable ? (*stable ? "yes" : "NO") : "-",
@@ -145,6 +160,10 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
   for (const SweepResult& r : results) {
     ordered_json s;
     s["scene"] = {{"name", r.scene}, {"bodies", r.bodies}, {"steps", r.steps}};
+    if (r.variant) {
+      s["scene"]["vary"] = {
+          {"key", r.variant->key}, {"text", r.variant->text}, {"value", r.variant->value}};
+    }
     s["reference"] = r.reference;
     s["reference_label"] = r.reference == "expect" ? r.reference : r.reference_label;
     if (r.reference_run) s["reference_ms_per_step"] = r.reference_run->timing.median_ms;
@@ -166,6 +185,7 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
       point["stable"] = stable ? ordered_json(*stable) : ordered_json(nullptr);
       point["pareto"] = p.pareto;
       if (p.run.verdict) point["verdict"] = to_string(p.run.verdict->worst);
+      if (p.run.failure) point["failure"] = *p.run.failure;
       if (const auto hits = p.run.counter("budget_hits")) point["budget_hits"] = *hits;
       point["degraded_steps"] = p.run.degraded_steps;
       s["points"].push_back(std::move(point));
@@ -177,7 +197,7 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
 
 void write_sweep_csv(std::ostream& out, const std::vector<SweepResult>& results) {
   out << "scene,engine,reference,ms_median,err_max,err_rms,efd_per_body_step,max_penetration,"
-         "stable,pareto\n";
+         "stable,pareto,vary\n";
   for (const SweepResult& r : results) {
     for (const SweepPoint& p : r.points) {
       const Metrics& m = p.run.metrics;
@@ -187,7 +207,8 @@ void write_sweep_csv(std::ostream& out, const std::vector<SweepResult>& results)
           << fmt_g(p.error.rms, 9) << ','
           << (m.efd_per_body_step ? fmt_g(*m.efd_per_body_step, 9) : "") << ','
           << (m.max_penetration ? fmt_g(*m.max_penetration, 9) : "") << ','
-          << (stable ? (*stable ? "1" : "0") : "") << ',' << (p.pareto ? 1 : 0) << '\n';
+          << (stable ? (*stable ? "1" : "0") : "") << ',' << (p.pareto ? 1 : 0) << ','
+          << (r.variant ? r.variant->key + "=" + r.variant->text : "") << '\n';
     }
   }
 }

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <cmath>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -25,8 +26,17 @@ struct SweepPoint {
   bool pareto = false;
 };
 
+// One value of the scene parameter `sweep --vary` steps through ("dt", "1/30", 0.0333...).
+struct SweepVariant {
+  std::string key;
+  std::string text;  // as the user wrote it
+  double value = 0.0;
+};
+
 struct SweepResult {
   std::string scene;
+  std::optional<SweepVariant>
+      variant;  // set by `sweep --vary`: the value this scene was built with
   int bodies = 0;
   int steps = 0;
   std::string reference;  // the reference engine spec, or "expect"
@@ -42,6 +52,9 @@ struct SweepOptions {
   // none to run, the reference does not run either.
   std::vector<bool> include;
   std::function<void(const std::string&, int, int)> progress;  // (label, done, total) points
+  // Seconds a point of an engine run in a child process (plugins, isolated_run.h) may take
+  // before it counts as a hang.
+  double timeout_s = HUGE_VAL;
 };
 
 // Runs every spec on the scene (those included); the reference first (unless the scene has
@@ -57,6 +70,8 @@ double timing_noise(const Timing& t);
 // escaped, tunnelled or worse are never on the front, and beat none.
 void mark_pareto(std::vector<SweepPoint>& points);
 
+// "stack", or "stack (dt=1/30)" for a scene built with one value of `sweep --vary`.
+std::string sweep_scene_label(const SweepResult& result);
 void print_sweep_table(std::ostream& out, const SweepResult& result);
 nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results);
 void write_sweep_csv(std::ostream& out, const std::vector<SweepResult>& results);

@@ -251,6 +251,11 @@ void register_all(const std::string& engine_list) {
     }
   }
   benchmark::AddCustomContext("chainbench_scaling", scaling);
+  // How an engine's times must be read, for every table that quotes them.
+  for (const EngineDef& def : engine_registry()) {
+    if (!def.caveat.empty())
+      benchmark::AddCustomContext("chainbench_caveat_" + def.name, def.caveat);
+  }
   // Every engine's benchmark settings, named by their labels: pyramid/LABEL/100.
   const auto engines = benchmarked(engine_list);
   for (const Family& family : benchmark_families()) {

@@ -51,6 +51,7 @@ int list_engines() {
   std::cout << "Engines (--engines SPEC,SPEC...; a spec is NAME[:key=value,...])\n";
   for (const EngineDef& e : engine_registry()) {
     std::cout << "\n" << e.name << ": " << e.description << "\n";
+    if (!e.caveat.empty()) std::cout << "  caveat: " << e.caveat << "\n";
     TextTable t({"  key", "default", "values", "meaning"});
     for (const KeyDef& k : e.keys) {
       std::string values;

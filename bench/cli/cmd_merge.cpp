@@ -38,6 +38,12 @@ int run(const MergeArgs& a) {
   const Merged merged = merge_parts(parts);
   auto json_out = open_output(a.json, "--json");
   const std::string text = merged.json.dump(2) + "\n";
+  if (json_out) {
+    json_out->stream() << text;
+    commit_outputs({json_out.get()});
+  } else {
+    std::cout << text;
+  }
   // The summary goes where the JSON does not.
   std::ostream& note = json_out ? std::cout : std::cerr;
   note << "merged " << parts.size() << " parts of a " << merged.command << ": " << merged.units
@@ -45,12 +51,6 @@ int run(const MergeArgs& a) {
   if (merged.command == "stress")
     note << ", " << merged.fatal << " failing the matrix (as the unsharded run's exit status)";
   note << '\n';
-  if (json_out) {
-    *json_out << text;
-    finish_output(json_out.get(), a.json);
-  } else {
-    std::cout << text;
-  }
   return merged.fatal > 0 ? 1 : 0;
 }
 
@@ -70,7 +70,13 @@ void add_merge_command(CLI::App& app, int* status) {
       "joined; 2 a file that is not a part, parts of different commands, versions or grids, a "
       "part given twice or missing; 1 (stress) some run fails the matrix, as the unsharded "
       "command would exit.");
-  m->callback([args, status] { *status = run(*args); });
+  m->callback([args, status] {
+    std::vector<NamedFile> inputs;
+    for (const std::string& file : args->files)
+      inputs.emplace_back("part", &file);
+    refuse_clashing_files({{"--json", &args->json}}, inputs);
+    *status = run(*args);
+  });
 }
 
 }  // namespace chainbench

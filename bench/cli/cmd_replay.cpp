@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "engine_choice.h"
 #include "input_error.h"
+#include "output_file.h"
 #include "registry.h"
 #include "run_scene.h"
 #include "value_checks.h"
@@ -25,8 +26,8 @@ void add_replay_command(CLI::App& app, int* status) {
   scene->excludes(file);
   r->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
   r->add_option("--engines", args->engines,
-                "engine specs, comma separated; default: " + default_engine_list() +
-                    ", those that can run the scene")
+                "engine specs, comma separated, \"defaults\" for the default list; default: " +
+                    default_engine_list() + ", those that can run the scene")
       ->check(kEngineList);
   r->add_option("--reference", args->reference,
                 "engine the chart measures the others from, or none; default: " +
@@ -43,10 +44,11 @@ void add_replay_command(CLI::App& app, int* status) {
   r->footer(
       "The page needs nothing beside it: open it in a browser, mail it, attach it to a bug "
       "report. Exit status: 0 written; 2 bad input or usage; 1 the page could not be written in "
-      "full.");
+      "full, or a plugin crashed or hung (the page shows the other engines); 130 Ctrl-C.");
   r->callback([args, status, scene, file] {
     if (scene->count() == 0 && file->count() == 0)
       throw InputError("replay: give --scene NAME or --scene-file FILE");
+    refuse_clashing_files({{"--out", &args->replay}}, {{"--scene-file", &args->scene_file}});
     *status = run_scene(*args);
   });
 }

@@ -2,6 +2,7 @@
 #include "commands.h"
 #include "engine_choice.h"
 #include "input_error.h"
+#include "interrupt.h"
 #include "output_file.h"
 #include "progress.h"
 #include "replay_page.h"
@@ -17,7 +18,6 @@
 #include "verdict.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -74,6 +74,8 @@ int run_scene(const RunArgs& a) {
   }
   RunOptions options;
   options.metrics = parse_metric_selection(a.metrics);
+  options.isolate = true;  // a plugin that dies is its row's crash, not the end of the run
+  if (a.timeout > 0.0) options.timeout_s = a.timeout;
   if (!required.empty()) {
     // A verdict needs stability and penetration.
     options.metrics.stability = options.metrics.penetration = true;
@@ -88,7 +90,7 @@ int run_scene(const RunArgs& a) {
   auto replay_out = open_output(a.replay, a.replay_option);
   std::optional<TraceWriter> trace;
   if (trace_out) {
-    trace.emplace(*trace_out, scene);
+    trace.emplace(trace_out->stream(), scene);
     options.observers.push_back(&*trace);
   }
   std::optional<ReplayRecorder> replay;
@@ -100,13 +102,19 @@ int run_scene(const RunArgs& a) {
   Progress progress;
   RunReport report;
   report.scene = &scene;
-  auto run_one = [&](const EngineSpec& spec) {
+  // Ctrl-C stops the run under way; the engines that finished are reported and written.
+  std::optional<Interrupt> interrupt(std::in_place);
+  options.stop = interrupt->flag();
+  auto run_one = [&](const EngineSpec& spec) -> std::optional<EngineRun> {
+    if (interrupt->stopped()) return std::nullopt;
     // The label the table uses, not the canonical spec: that one fills the line with defaults.
-    options.progress = [&](int done, int total) {
-      progress.update(scene.name + ": " + spec.label(), done, total);
-    };
+    const std::string label = scene.name + ": " + spec.label();
+    options.progress = [&](int done, int total) { progress.update(label, done, total); };
+    // Drawn here first: a plugin's bar is drawn by its child process, and cleared here.
+    progress.update(label, 0, scene.steps);
     EngineRun r = run_engine(scene, spec, options);
     progress.clear();
+    if (r.interrupted) return std::nullopt;  // a half run says nothing
     return r;
   };
   // A replay measures every engine from the reference at every step, so the reference runs
@@ -114,6 +122,11 @@ int run_scene(const RunArgs& a) {
   const bool included =
       reference && std::find(engines.begin(), engines.end(), *reference) != engines.end();
   if (reference) report.reference_spec = *reference;
+  if (reference && !included && a.reference.empty()) {
+    // It may cost more than the engines asked for: say so, and how to leave it out.
+    std::cerr << "chainbench: note: the reference " << reference->label()
+              << " is not among --engines and runs too (--reference none skips it)\n";
+  }
   if (reference && !included && replay) report.reference = run_one(*reference);
   std::vector<std::optional<EngineRun>> runs(engines.size());
   for (int pass = 0; pass < 2; ++pass) {
@@ -122,39 +135,40 @@ int run_scene(const RunArgs& a) {
       if ((pass == 0) == first) runs[k] = run_one(engines[k]);
     }
   }
-  for (std::optional<EngineRun>& r : runs)
-    report.runs.push_back(std::move(*r));
+  for (std::optional<EngineRun>& r : runs) {
+    if (r) report.runs.push_back(std::move(*r));
+  }
   if (reference && !included && !replay) report.reference = run_one(*reference);
+  report.interrupted = interrupt->stopped();
+  interrupt.reset();
   compare(report);
 
   print_run_table(std::cout, report);
   if (!note.empty()) std::cout << "\nnote: " << note << '\n';
   for (const std::string& left_out : choice.notes)
     std::cout << "note: " << left_out << '\n';
-  if (json_out) *json_out << run_json(report).dump(2) << '\n';
-  if (csv_out) write_run_csv(*csv_out, report);
-  finish_output(json_out.get(), a.json);
-  finish_output(csv_out.get(), a.csv);
-  finish_output(trace_out.get(), a.trace);
+  if (json_out) json_out->stream() << run_json(report).dump(2) << '\n';
+  if (csv_out) write_run_csv(csv_out->stream(), report);
+  ReplayPageSummary written;
   if (replay_out) {
     ReplayPageOptions page;
     page.generator = "chainbench " CHAINBENCH_VERSION;
     page.max_bytes = static_cast<std::size_t>(a.replay_mb * 1e6);
     page.limit_option = a.replay_mb_option;
-    ReplayPageSummary written;
-    try {
-      written = write_replay_page(*replay_out, report, *replay, page);
-    } catch (const InputError&) {
-      replay_out.reset();
-      std::remove(a.replay.c_str());  // left empty, it would look like a page written
-      throw;
-    }
-    finish_output(replay_out.get(), a.replay);
+    // Too big a page throws; the outputs are then left as they were.
+    written = write_replay_page(replay_out->stream(), report, *replay, page);
+  }
+  commit_outputs({json_out.get(), csv_out.get(), trace_out.get(), replay_out.get()});
+  if (replay_out) {
     std::cout << "replay: wrote " << a.replay << " (" << fmt_g(written.bytes / 1e6, 3)
               << " MB; centres to " << fmt_g(written.quantum, 3) << " m, "
               << (written.stride == 1 ? std::string("every step")
                                       : "one step in " + std::to_string(written.stride))
               << ")\n";
+  }
+  if (report.interrupted) {
+    Interrupt::report("the engines that finished are above (and in the outputs)");
+    return kInterruptedStatus;
   }
   int status = 0;
   if (!required.empty() && scene.expect.empty()) {
@@ -169,6 +183,16 @@ int run_scene(const RunArgs& a) {
       status = 3;
     }
   }
+  // A plugin that crashed or hung has its row; the others' results are kept, and the run fails.
+  auto failed = [&](const EngineRun& r) {
+    if (!r.failure) return;
+    std::cerr << "chainbench: " << r.spec.label() << " " << *r.failure << " (its row says "
+              << to_string(r.verdict->worst) << "; the other engines' results are kept)\n";
+    if (status == 0) status = 1;
+  };
+  for (const EngineRun& r : report.runs)
+    failed(r);
+  if (report.reference) failed(*report.reference);
   return status;
 }
 
@@ -183,7 +207,8 @@ void add_run_command(CLI::App& app, int* status) {
   run_app->add_option("--set", args->sets, "KEY=VALUE parameter of a built-in scene (repeatable)");
   run_app
       ->add_option("--engines", args->engines,
-                   "engine specs, comma separated (chainbench engines); default: " +
+                   "engine specs, comma separated (chainbench engines), \"defaults\" for the "
+                   "default list (defaults,box2d:sleep=1 adds one); default: " +
                        default_engine_list() + ", those that can run the scene")
       ->check(kEngineList);
   run_app->add_option(
@@ -191,6 +216,11 @@ void add_run_command(CLI::App& app, int* status) {
       "engine the others are compared with, or none; default: " + default_reference().label());
   run_app->add_option("--steps", args->steps, "steps to run instead of the scene's")
       ->transform(whole_number_in(1, 10'000'000));
+  run_app
+      ->add_option("--timeout", args->timeout,
+                   "seconds a plugin's run (in a child process) may take before it counts as a "
+                   "hang; default: no limit")
+      ->check(number_in(0.001, 1e9));
   run_app->add_option("--json", args->json, "write the chainbench.run/1 JSON here")
       ->check(non_empty_path("output file"));
   run_app->add_option("--csv", args->csv, "write one CSV row per engine here")
@@ -216,14 +246,17 @@ void add_run_command(CLI::App& app, int* status) {
                       "3 (repeatable)");
   run_app->footer(
       "Exit status: 0 done; 2 bad input or usage; 3 a --require engine missed an expectation or "
-      "was not ok; 1 an output file could not be finished, or an internal failure.");
+      "was not ok; 1 a plugin crashed or hung (its row says so; the other engines' results are "
+      "kept), an output could not be finished, or an internal failure; 130 Ctrl-C (the engines "
+      "that finished are kept).");
   run_app->callback([args, status, scene, file] {
     if (scene->count() == 0 && file->count() == 0)
       throw InputError("run: give --scene NAME or --scene-file FILE");
-    refuse_shared_outputs({{"--json", &args->json},
+    refuse_clashing_files({{"--json", &args->json},
                            {"--csv", &args->csv},
                            {"--trace", &args->trace},
-                           {"--replay", &args->replay}});
+                           {"--replay", &args->replay}},
+                          {{"--scene-file", &args->scene_file}});
     *status = run_scene(*args);
   });
 }

@@ -2,6 +2,7 @@
 #include "commands.h"
 #include "engine_choice.h"
 #include "input_error.h"
+#include "interrupt.h"
 #include "output_file.h"
 #include "progress.h"
 #include "registry.h"
@@ -15,6 +16,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 
 namespace chainbench {
 namespace {
@@ -82,31 +84,42 @@ int run(const StressArgs& a) {
   Progress progress;
   std::vector<StressVerdict> verdicts;
   int done = 0;
+  // Ctrl-C stops the run under way; the runs that finished are reported and written.
+  std::optional<Interrupt> interrupt(std::in_place);
   for (const std::size_t u : ran) {
     const StressCase& c = cases[u / engines.size()];
     const EngineSpec& e = engines[u % engines.size()];
     progress.update(c.label() + " / " + e.label(), done++, static_cast<int>(ran.size()));
-    verdicts.push_back(run_stress_case(c, e, a.timeout));
+    StressVerdict v = run_stress_case(c, e, a.timeout, interrupt->flag());
+    if (v.interrupted || interrupt->stopped()) break;
+    verdicts.push_back(std::move(v));
   }
   progress.clear();
-  if (verdicts.empty()) {
+  const bool stopped = interrupt->stopped();
+  interrupt.reset();
+  ran.resize(verdicts.size());  // a part names the runs it holds
+  if (verdicts.empty() && !stopped) {
     std::cout << "part " << shard.index << "/" << shard.count << " holds none of the " << units
               << " runs\n";
   } else {
     print_stress_table(std::cout, verdicts);
   }
-  nlohmann::ordered_json json = stress_json(verdicts, a.quick);
+  nlohmann::ordered_json json = stress_json(verdicts, a.quick, stopped);
   if (!shard.whole()) {
     const ShardOrigin origin{"stress", CHAINBENCH_VERSION,
                              grid_fingerprint(describe_matrix(cases, engines, a.timeout)), units};
     json["shard"] = shard_json(origin, shard, ran);
   }
-  if (json_out) *json_out << json.dump(2) << '\n';
-  finish_output(json_out.get(), a.json);
+  if (json_out) json_out->stream() << json.dump(2) << '\n';
+  commit_outputs({json_out.get()});
   if (std::none_of(engines.begin(), engines.end(),
                    [](const EngineSpec& e) { return is_gate(e); })) {
     std::cerr << "chainbench: note: no engine in the list gates the run (the modern chain solver "
                  "does): the exit status judges nothing\n";
+  }
+  if (stopped) {
+    Interrupt::report("the runs that finished are above (and in the outputs)");
+    return kInterruptedStatus;
   }
   std::map<std::string, int> failures;  // per gate engine (registry.h)
   for (const StressVerdict& v : verdicts)

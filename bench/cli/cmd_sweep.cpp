@@ -1,45 +1,61 @@
 // chainbench sweep: error against run time over a grid of engine settings.
 #include "commands.h"
 #include "input_error.h"
+#include "interrupt.h"
 #include "output_file.h"
 #include "progress.h"
 #include "registry.h"
 #include "scene_file.h"
 #include "scene_library.h"
+#include "scene_vary.h"
 #include "shard.h"
 #include "sweep.h"
 #include "value_checks.h"
 
 #include <algorithm>
-#include <atomic>
-#include <csignal>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 namespace chainbench {
 namespace {
-
-std::atomic<bool> g_stop{false};
-
-extern "C" void on_interrupt(int) {
-  g_stop.store(true);
-}
 
 struct SweepArgs {
   std::vector<std::string> scenes, scene_files, sets, grids;
   std::string reference;  // empty: the registry's accurate reference
   int steps = 0;
+  double timeout = 0.0;  // 0: none
   std::string json, csv;
   std::string shard;  // "K/N", or empty: the whole grid
+  std::string vary;   // "KEY=v1,v2,...": each built-in scene once per value
 };
 
 int run(const SweepArgs& a) {
   // Everything the user typed is checked before anything runs.
   std::vector<Scene> scenes;
+  std::vector<std::optional<SweepVariant>> variants;  // per scene: its --vary value
   std::vector<std::string> sets = a.sets, notes;
   if (a.steps > 0) sets.push_back("steps=" + std::to_string(a.steps));
-  for (const std::string& name : a.scenes)
-    scenes.push_back(make_scene(name, sets));
+  if (!a.vary.empty()) {
+    if (a.scenes.empty()) throw InputError("--vary applies to built-in scenes: give --scene NAME");
+    if (!a.scene_files.empty())
+      throw InputError("--vary applies to built-in scenes, not --scene-file");
+    const SceneVary vary = parse_vary(a.vary);
+    for (const std::string& name : a.scenes) {
+      for (std::size_t k = 0; k < vary.values.size(); ++k) {
+        scenes.push_back(make_varied_scene(name, sets, vary, k));
+        variants.push_back(SweepVariant{vary.key, vary.texts[k], vary.values[k]});
+      }
+    }
+    if (vary.key == "dt" && a.steps == 0) {
+      notes.push_back(
+          "--vary dt: each run lasts as long as the scene's default run at 1/60 s "
+          "(steps = default steps / 60 / dt)");
+    }
+  } else {
+    for (const std::string& name : a.scenes)
+      scenes.push_back(make_scene(name, sets));
+  }
   if (!a.scene_files.empty() && !a.sets.empty() && a.scenes.empty()) {
     throw InputError("--set applies to built-in scenes, not --scene-file");
   }
@@ -50,6 +66,7 @@ int run(const SweepArgs& a) {
         notes.push_back(std::move(note));
     }
   }
+  variants.resize(scenes.size());
   if (scenes.empty())
     throw InputError("sweep: give --scene NAME or --scene-file FILE (repeatable)");
   std::vector<EngineSpec> grid;
@@ -101,22 +118,27 @@ int run(const SweepArgs& a) {
   auto json_out = open_output(a.json, "--json");
   auto csv_out = open_output(a.csv, "--csv");
 
-  g_stop = false;
-  const auto previous = std::signal(SIGINT, on_interrupt);
+  std::optional<Interrupt> interrupt(std::in_place);
   Progress progress;
   std::vector<SweepResult> results;
   for (const Scene& scene : scenes) {
+    const std::size_t k = static_cast<std::size_t>(&scene - scenes.data());
     SweepOptions options;
-    options.stop = &g_stop;
-    options.include = include[&scene - scenes.data()];
+    options.stop = interrupt->flag();
+    if (a.timeout > 0.0) options.timeout_s = a.timeout;
+    options.include = include[k];
+    const std::string name =
+        variants[k] ? scene.name + " " + variants[k]->key + "=" + variants[k]->text : scene.name;
     options.progress = [&](const std::string& label, int done, int total) {
-      progress.update(scene.name + ": " + label, done, total);
+      progress.update(name + ": " + label, done, total);
     };
-    results.push_back(sweep(scene, grids[&scene - scenes.data()], reference, options));
+    results.push_back(sweep(scene, grids[k], reference, options));
+    results.back().variant = variants[k];
     progress.clear();
-    if (g_stop) break;
+    if (interrupt->stopped()) break;
   }
-  std::signal(SIGINT, previous);
+  const bool stopped = interrupt->stopped();
+  interrupt.reset();
 
   for (const SweepResult& r : results) {
     print_sweep_table(std::cout, r);
@@ -135,16 +157,27 @@ int run(const SweepArgs& a) {
               << ran.size() << " of its " << next
               << " points; pareto marks compare these alone (chainbench merge marks the whole)\n";
   }
-  if (json_out) *json_out << json.dump(2) << '\n';
-  if (csv_out) write_sweep_csv(*csv_out, results);
-  finish_output(json_out.get(), a.json);
-  finish_output(csv_out.get(), a.csv);
-  if (g_stop) {
-    std::cerr
-        << "chainbench: interrupted; the points measured so far are above (and in the outputs)\n";
-    return 130;
+  if (json_out) json_out->stream() << json.dump(2) << '\n';
+  if (csv_out) write_sweep_csv(csv_out->stream(), results);
+  commit_outputs({json_out.get(), csv_out.get()});
+  if (stopped) {
+    Interrupt::report("the points measured so far are above (and in the outputs)");
+    return kInterruptedStatus;
   }
-  return 0;
+  // A plugin that crashed or hung has its row; the sweep still fails.
+  int status = 0;
+  for (const SweepResult& r : results) {
+    auto failed = [&](const EngineRun& run) {
+      if (!run.failure) return;
+      std::cerr << "chainbench: " << run.spec.label() << " on scene " << r.scene << ": "
+                << *run.failure << "\n";
+      status = 1;
+    };
+    if (r.reference_run) failed(*r.reference_run);
+    for (const SweepPoint& p : r.points)
+      failed(p.run);
+  }
+  return status;
 }
 
 }  // namespace
@@ -167,15 +200,26 @@ void add_sweep_command(CLI::App& app, int* status) {
           accurate_reference().label());
   sweep_app->add_option("--steps", args->steps, "steps to run instead of each scene's")
       ->transform(whole_number_in(1, 10'000'000));
+  sweep_app
+      ->add_option("--timeout", args->timeout,
+                   "seconds a point of a plugin (run in a child process) may take before it "
+                   "counts as a hang; default: no limit")
+      ->check(number_in(0.001, 1e9));
   sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here")
       ->check(non_empty_path("output file"));
   sweep_app->add_option("--csv", args->csv, "write one CSV row per point here")
       ->check(non_empty_path("output file"));
+  sweep_app->add_option("--vary", args->vary,
+                        "KEY=v1,v2,...: run each --scene once per value of its parameter KEY "
+                        "(values may be fractions: dt=1/30,1/60,1/120,1/240)");
   sweep_app->add_option("--shard", args->shard,
                         "K/N: run the K-th of N parts of the grid (points K, K+N, ...); "
                         "chainbench merge joins the parts' JSON");
   sweep_app->callback([args, status] {
-    refuse_shared_outputs({{"--json", &args->json}, {"--csv", &args->csv}});
+    std::vector<NamedFile> inputs;
+    for (const std::string& file : args->scene_files)
+      inputs.emplace_back("--scene-file", &file);
+    refuse_clashing_files({{"--json", &args->json}, {"--csv", &args->csv}}, inputs);
     *status = run(*args);
   });
 }

@@ -1,6 +1,6 @@
 // Which engines a command runs: the list the user gave, every one of which must be able to run
-// every scene (else InputError, before anything runs), or, with no list, every registered engine's
-// defaults that can, with a note for each one left out.
+// every scene (else InputError, before anything runs), or, with no list or with the entry
+// `defaults`, every registered engine's defaults that can, with a note for each one left out.
 #pragma once
 
 #include "engine_spec.h"
@@ -19,7 +19,12 @@ struct EngineChoice {
   std::vector<std::pair<EngineSpec, std::string>> left_out;
 };
 
-// `list`: "--engines" as typed, or empty for the defaults.
+// The entry of an engine list that stands for the defaults: "defaults,box2d:sleep=1" runs them
+// and one more.
+inline constexpr const char* kDefaultEngines = "defaults";
+
+// `list`: "--engines" as typed, or empty for the defaults. An entry `defaults` adds the defaults
+// that can run every scene (the others left out with a note, as with no list).
 EngineChoice choose_engines(const std::string& list, const std::vector<const Scene*>& scenes);
 
 // The default engine list as `--help` shows it.

@@ -2,7 +2,8 @@
 // compares them.
 // Exit status: 0 done; 2 bad input or usage; 3 `run --require` not met; 1 an output file that
 // could not be finished, an internal failure, or (stress) the modern solver not ok on a case;
-// 130 a sweep stopped by Ctrl-C.
+// 130 a run, sweep or stress stopped by Ctrl-C (what finished is kept). A failed write to standard
+// output or standard error is an output error (1).
 #include "commands.h"
 #include "input_error.h"
 #include "output_file.h"
@@ -67,20 +68,28 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  int code = status;
   try {
     app.parse(argc, argv);
+    code = status;
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    code = app.exit(e) == 0 ? 0 : 2;
   } catch (const chainbench::InputError& e) {
     std::cerr << "chainbench: " << e.what() << '\n';
-    return 2;
+    code = 2;
   } catch (const chainbench::OutputError& e) {
     std::cerr << "chainbench: " << e.what() << '\n';
-    return 1;
+    code = 1;
   } catch (const std::exception& e) {
     std::cerr << "chainbench: internal error: " << e.what() << '\n';
-    return 1;
+    code = 1;
   }
-  return status;
+  // What was printed must have arrived: a table sent to a full disk is a failure, not a success.
+  try {
+    chainbench::check_standard_streams();
+  } catch (const chainbench::OutputError& e) {
+    std::cerr << "chainbench: " << e.what() << '\n';
+    return code == 0 ? 1 : code;
+  }
+  return code;
 }

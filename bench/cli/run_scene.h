@@ -14,6 +14,7 @@ struct RunArgs {
   std::string engines;    // empty: every engine's defaults that can run the scene
   std::string reference;  // empty: the registry's reference engine
   int steps = 0;
+  double timeout = 0.0;  // seconds an engine run in a child process (plugins) may take; 0: none
   std::string json, csv, trace;
   std::string replay;                      // the replay page (replay_page.h), or empty
   const char* replay_option = "--replay";  // how the user named it, for messages
@@ -23,7 +24,8 @@ struct RunArgs {
   std::vector<std::string> require;
 };
 
-// Returns the exit status: 0, or 3 when a --require engine fails; throws InputError for bad
+// Returns the exit status: 0; 3 when a --require engine fails; 1 when an engine run in a child
+// process (a plugin) crashed or hung; 130 when Ctrl-C stopped it. Throws InputError for bad
 // input before anything runs.
 int run_scene(const RunArgs& args);
 

@@ -202,6 +202,9 @@ EngineDef register_chipmunk() {
       whole_key("sleep", 0, 0, 1, "bodies at rest fall asleep, as games ship it")};
   e.capabilities = [](const EngineSpec&) { return Capabilities{true, true, true, true, true}; };
   e.counters = counter_list();
+  e.caveat =
+      "Debian's Chipmunk 7 is built with its debug checks on, so its times overstate what a "
+      "release build of Chipmunk costs";
   e.defaults = {"chipmunk"};
   e.accurate = "chipmunk:iterations=40,substeps=8";
   e.sweep = {"iterations=2,5,20,40", "substeps=2,4,8", "skin=raw"};

@@ -224,6 +224,7 @@ EngineDef register_plugin() {
       "your own resolver, from a shared library built against chainbench/engine_plugin.h";
   e.keys = {file_key("path", "the plugin's shared library (.so)")};
   e.open_keys = true;
+  e.isolated = true;
   e.capabilities = [](const EngineSpec& spec) {
     const std::uint32_t can = load_plugin(spec.get("path")).api->capabilities;
     Capabilities c;

@@ -68,12 +68,18 @@ struct EngineDef {
   std::vector<KeyDef> keys;
   bool open_keys = false;  // keys it does not declare are passed to the engine (plugins)
   std::function<Capabilities(const EngineSpec&)> capabilities;
-  std::vector<CounterDef> counters;   // what its engines count (a plugin's, once loaded)
+  std::vector<CounterDef> counters;  // what its engines count (a plugin's, once loaded)
+  // How its times must be read, said beside every figure that quotes them (run JSON "caveat",
+  // `chainbench engines`, the benchmark's context, the report's and README's ratios); or empty.
+  std::string caveat;
   std::string stats_block;            // also writes its counters under this run-JSON key
   std::vector<std::string> defaults;  // specs run when a command is given no engine list
   bool reference = false;             // the default reference of `run`
-  std::string accurate;               // a setting finer than any sweep point: a sweep reference
-  std::vector<std::string> sweep;     // default sweep, one knob at a time: "vel_iters=1,2,4"
+  // Its code is not the harness' own (plugins): `run` and `sweep` run it in a child process, so
+  // that a crash or a hang in it is its verdict rather than the end of the command.
+  bool isolated = false;
+  std::string accurate;            // a setting finer than any sweep point: a sweep reference
+  std::vector<std::string> sweep;  // default sweep, one knob at a time: "vel_iters=1,2,4"
   // A setting that must be right: `stress` fails when its verdict on a case is anything but ok or
   // budget, except where a known failure lists that very case and verdict, with its reason.
   std::string gate;

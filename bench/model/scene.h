@@ -77,6 +77,8 @@ const char* to_string(Expectation::Kind kind);
 struct Scene {
   std::string name;
   std::string description;
+  std::string
+      family;  // a built-in scene's (stacking, pushing, level, moving, ...); empty for a file
   Vec2d gravity{0.0, -10.0};
   double dt = 1.0 / 60.0;
   int steps = 120;

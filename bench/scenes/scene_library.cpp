@@ -104,6 +104,7 @@ Scene make_scene(std::string_view name, const std::vector<std::string>& sets) {
   }
   Scene scene = recipe->build(values);
   scene.description = recipe->description;
+  scene.family = recipe->family;
   scene.steps = values.count("steps");
   scene.dt = values.get("dt");
   scene.friction = values.get("friction");

@@ -16,6 +16,7 @@ def load_sweep(path):
     if not isinstance(data.get("scenes"), list) or not data["scenes"]:
         raise InputError(f"{path}: no scenes")
     return [{"name": str(s["scene"]["name"]), "bodies": s["scene"].get("bodies", "?"),
+             "vary": variant_of(s["scene"]),
              "steps": s["scene"].get("steps", "?"),
              "reference": s.get("reference_label") or s.get("reference"),
              "reference_ms": number(s.get("reference_ms_per_step")),
@@ -25,6 +26,23 @@ def load_sweep(path):
                          "stable": p.get("stable"), "pareto": p.get("pareto") is True}
                         for p in s["points"]]}
             for s in data["scenes"]]
+
+
+def variant_of(scene):
+    """(key, text, value) of a scene built by `sweep --vary`, or None."""
+    vary = scene.get("vary")
+    if not isinstance(vary, dict):
+        return None
+    value = number(vary.get("value"))
+    if value is None or not isinstance(vary.get("key"), str):
+        return None
+    return (vary["key"], str(vary.get("text", value)), value)
+
+
+def scene_title(scene):
+    """"stack", or "stack (dt=1/30)" for one value of `sweep --vary`."""
+    vary = scene["vary"]
+    return scene["name"] + (f" ({vary[0]}={vary[1]})" if vary else "")
 
 
 def plot_sweep(path, scenes, out_dir, svg):
@@ -39,8 +57,8 @@ def plot_sweep(path, scenes, out_dir, svg):
         raise InputError(f"{path}: no scene has a point with both a time and an error")
     plt, stems = pyplot(), set()  # stems written, lower case (some file systems ignore case)
     for scene in scenes:
-        name, usable, ref, ref_ms = (scene[k] for k in ("name", "usable", "reference",
-                                                        "reference_ms"))
+        usable, ref, ref_ms = (scene[k] for k in ("usable", "reference", "reference_ms"))
+        name = scene_title(scene)
         if not usable:
             print(f"plot.py: {path}: scene {name!r} has no point with a time and an error; skipped",
                   file=sys.stderr)
@@ -88,6 +106,64 @@ def plot_sweep(path, scenes, out_dir, svg):
         note_below(ax, notes)
         place_labels(ax, sorted(labels))
         stem = base = f"sweep_{file_stem(name)}"
+        n = 1
+        while stem.lower() in stems:
+            n += 1
+            stem = f"{base}_{n}"
+        stems.add(stem.lower())
+        save(fig, out_dir, stem, svg)
+    plot_varied(scenes, out_dir, svg, stems)
+
+
+def plot_varied(scenes, out_dir, svg, stems):
+    """For each scene run with `sweep --vary KEY=...`: every value's points in one plot, error
+    against ms/step, a colour per value and a marker per engine, each value's Pareto front as a
+    line: how error and cost move with KEY (the time step first of all)."""
+    groups = {}
+    for scene in scenes:
+        if scene["vary"] and scene["usable"]:
+            groups.setdefault((scene["name"], scene["vary"][0]), []).append(scene)
+    plt = pyplot()
+    for (name, key), members in groups.items():
+        members.sort(key=lambda s: s["vary"][2])
+        # One floor for every value, so that errors of 0 line up (a log axis has no 0).
+        positive = [p["rms"] for s in members for p in s["usable"] if p["rms"] > 0]
+        floor = 10.0 ** math.floor(math.log10(min(positive) / 10)) if positive else 1e-12
+        for s in members:
+            for p in s["usable"]:
+                p["y"] = max(p["rms"], floor)
+        fig, ax = plt.subplots(figsize=(10, 6.5))
+        fig.subplots_adjust(left=0.09, right=0.74, top=0.88, bottom=0.16)
+        engines = styles(dict.fromkeys(engine_of(p["label"]) for s in members for p in s["usable"]))
+        values = styles([s["vary"][1] for s in members])
+        for scene in members:
+            colour = values[scene["vary"][1]][1]
+            for fam, (marker, _) in engines.items():
+                pts = [p for p in scene["usable"] if engine_of(p["label"]) == fam]
+                if pts:
+                    ax.scatter([p["ms"] for p in pts], [p["y"] for p in pts], marker=marker, s=36,
+                               facecolors=[colour if p["rms"] > 0 else "none" for p in pts],
+                               edgecolors=colour, zorder=3)
+            label = f"{key}={scene['vary'][1]} ({len(scene['usable'])} points)"
+            front = sorted((p["ms"], p["y"]) for p in scene["usable"] if p["pareto"])
+            if front:
+                ax.step(*zip(*front), where="post", color=colour, lw=1.2, alpha=0.8, zorder=2,
+                        label=label)
+            else:
+                ax.plot([], [], color=colour, label=label)
+        for fam, (marker, _) in engines.items():
+            ax.scatter([], [], marker=marker, color="0.3", label=fam)
+        ax.set(xscale="log", yscale="log", xlabel="time per step (ms, median, log scale)",
+               ylabel="final-position error, RMS over dynamic bodies (m, log scale)")
+        ax.grid(True, alpha=0.3)
+        ax.set_title(f"{name}: error against time per step for each {key}\n"
+                     f"lines: each value's Pareto front; markers: engines", fontsize=11)
+        ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1), fontsize=8, title=f"{key} / engine")
+        notes = [f"{key} values: " + ", ".join(s["vary"][1] for s in members)]
+        if len(positive) < sum(len(s["usable"]) for s in members):
+            notes.append(f"hollow markers: error 0, drawn at {floor:g} m (a log axis has no 0)")
+        note_below(ax, notes)
+        stem = base = f"sweep_{file_stem(name)}_by_{file_stem(key)}"
         n = 1
         while stem.lower() in stems:
             n += 1

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -603,4 +604,77 @@ TEST(Cli, MergeNamesAMalformedPartsFieldAndWhy) {
   nlohmann::ordered_json bad_index = good;
   bad_index["shard"]["index"] = "one";
   refused(bad_index, "shard.index: should be a whole number, got string");
+}
+
+TEST(Cli, SweepVaryRunsEachSceneOncePerValueAndNamesItEverywhere) {
+  const std::string json_path = temp("vary.json"), csv_path = temp("vary.csv");
+  const Result r = chainbench(
+      "sweep --scene stack --set n=3 --vary dt=1/30,1/120 --grid chain:passes=1,4 --json " +
+      json_path + " --csv " + csv_path);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("scene stack (dt=1/30): "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("scene stack (dt=1/120): "), std::string::npos) << r.out;
+  nlohmann::json j;
+  std::ifstream(json_path) >> j;
+  ASSERT_EQ(j["scenes"].size(), 2u);
+  // Each value keeps the default run's simulated time (600 steps at 1/60 s: 10 s).
+  const int steps[] = {300, 1200};
+  for (int k = 0; k < 2; ++k) {
+    const auto& scene = j["scenes"][k]["scene"];
+    EXPECT_EQ(scene["vary"]["key"], "dt");
+    EXPECT_EQ(scene["vary"]["text"], k == 0 ? "1/30" : "1/120");
+    EXPECT_EQ(scene["vary"]["value"].get<double>(), k == 0 ? 1.0 / 30 : 1.0 / 120);
+    EXPECT_EQ(scene["steps"], steps[k]);
+    EXPECT_EQ(j["scenes"][k]["points"].size(), 2u);
+  }
+  std::ifstream csv(csv_path);
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  EXPECT_EQ(header.substr(header.size() - 5), ",vary");
+  EXPECT_EQ(row.substr(row.size() - 8), ",dt=1/30");
+
+  const Result bad = chainbench("sweep --scene stack --vary dt=1/30,1/30");
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("--vary dt: value 1/30 given twice"), std::string::npos) << bad.out;
+  const Result file = chainbench("sweep --scene-file " + std::string(CHAINBENCH_EXAMPLES) +
+                                 "/push_two.json --vary dt=1/30");
+  EXPECT_EQ(file.status, 2) << file.out;
+  EXPECT_NE(file.out.find("--vary applies to built-in scenes"), std::string::npos) << file.out;
+}
+
+TEST(Cli, DefaultsInAnEngineListStandForTheDefaultEngines) {
+  const std::string json_path = temp("defaults.json");
+  const Result r = chainbench(
+      "run --scene stack --set n=3 --set steps=10 --engines "
+      "defaults,chipmunk:sleep=1,chain --json " +
+      json_path);
+  ASSERT_EQ(r.status, 0) << r.out;
+  nlohmann::json j;
+  std::ifstream(json_path) >> j;
+  std::vector<std::string> labels;
+  for (const auto& run : j["runs"])
+    labels.push_back(run["label"]);
+  // The defaults in their order, the ones named after them; chain, named again, runs once.
+  EXPECT_EQ(labels, (std::vector<std::string>{"chain:variant=seed2014", "box2d", "chipmunk",
+                                              "chipmunk:sleep=1", "chain"}));
+  for (const auto& run : j["runs"]) {
+    const bool chipmunk = run["engine"].get<std::string>().rfind("chipmunk", 0) == 0;
+    EXPECT_EQ(run.contains("caveat"), chipmunk) << run["label"];
+  }
+  EXPECT_EQ(j["scene"]["family"], "stacking");
+
+  // A default that cannot run the scene is left out with a note, as with no list.
+  const Result friction = chainbench(
+      "run --scene stack --set n=3 --set steps=10 --set friction=0.5 --engines "
+      "defaults,box2d:sleep=1");
+  EXPECT_EQ(friction.status, 0) << friction.out;
+  EXPECT_NE(friction.out.find("chain:variant=seed2014 left out"), std::string::npos)
+      << friction.out;
+  const Result twice = chainbench("run --scene stack --engines defaults,defaults");
+  EXPECT_EQ(twice.status, 2) << twice.out;
+  EXPECT_NE(twice.out.find("defaults given twice"), std::string::npos) << twice.out;
+  const Result keys = chainbench("run --scene stack --engines defaults,sleep=1");
+  EXPECT_EQ(keys.status, 2) << keys.out;
+  EXPECT_NE(keys.out.find("follows defaults, which takes no keys"), std::string::npos) << keys.out;
 }

@@ -6,9 +6,11 @@
 #include "registry.h"
 #include "runner.h"
 #include "stress.h"
+#include "trace_writer.h"
 
 #include <gtest/gtest.h>
 
+#include <sstream>
 #include <string>
 
 namespace chainbench {
@@ -146,6 +148,76 @@ TEST(Plugin, RelaxationExampleRestsABoxOnTheGround) {
   // Resting on the ground's top face (y = 0) with its half height 0.5, less at most a step's fall.
   EXPECT_NEAR(run.final_positions[1].y, 0.5, 10.0 / 3600.0);
   EXPECT_TRUE(run.counter("pushes").has_value());
+}
+
+}  // namespace
+}  // namespace chainbench
+
+namespace chainbench {
+namespace {
+
+// In a child process (as run and sweep run a plugin) a run comes back as it is in process: the
+// same positions, metrics, expectations and verdict, and every step its observers would have
+// seen, to the bit.
+TEST(Plugin, ARunInAChildProcessIsTheRunInProcess) {
+  Scene s = flight();
+  Expectation e;
+  e.kind = Expectation::Kind::kCenter;
+  e.body = 0;
+  e.center = {1.5, 0.0};
+  e.tolerance = 0.1;
+  s.expect.push_back(e);  // missed: the ball is elsewhere, so the outcome has figures to carry
+  const EngineSpec spec = parse_engine_spec(plugin_spec("none"));
+  std::ostringstream here_text, child_text;
+  TraceWriter here_trace(here_text, s), child_trace(child_text, s);
+  RunOptions here;
+  here.observers = {&here_trace};
+  RunOptions child = here;
+  child.observers = {&child_trace};
+  child.isolate = true;
+  const EngineRun a = run_engine(s, spec, here);
+  const EngineRun b = run_engine(s, spec, child);
+  ASSERT_FALSE(b.failure) << *b.failure;
+  EXPECT_EQ(b.hash, a.hash);
+  EXPECT_EQ(b.counters, a.counters);
+  EXPECT_EQ(*b.metrics.efd_total, *a.metrics.efd_total);
+  EXPECT_EQ(*b.metrics.peak_speed, *a.metrics.peak_speed);
+  EXPECT_EQ(b.metrics.escaped, a.metrics.escaped);
+  ASSERT_TRUE(b.expect && a.expect);
+  EXPECT_FALSE(b.expect->pass);
+  EXPECT_EQ(b.expect->max_error, a.expect->max_error);
+  EXPECT_EQ(b.verdict->str(), a.verdict->str());
+  EXPECT_EQ(child_text.str(), here_text.str());
+  EXPECT_GT(child_text.str().size(), 1000u);
+}
+
+// A plugin error in the child is the same error here, with its message.
+TEST(Plugin, AnErrorInTheChildIsThrownHere) {
+  RunOptions child;
+  child.isolate = true;
+  EXPECT_THROW(
+      {
+        try {
+          run_engine(flight(), parse_engine_spec(plugin_spec("create")), child);
+        } catch (const InputError& e) {
+          EXPECT_NE(std::string(e.what()).find("this plugin builds no worlds"), std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      InputError);
+}
+
+// A crash in the child is the run's crash verdict, with the signal.
+TEST(Plugin, ACrashInTheChildIsTheRunsVerdict) {
+  RunOptions child;
+  child.isolate = true;
+  child.timeout_s = 60;
+  const EngineRun r = run_engine(flight(), parse_engine_spec(plugin_spec("abort")), child);
+  ASSERT_TRUE(r.failure);
+  ASSERT_TRUE(r.verdict);
+  EXPECT_EQ(r.verdict->worst, VerdictClass::kCrash);
+  EXPECT_TRUE(r.final_positions.empty());
 }
 
 }  // namespace

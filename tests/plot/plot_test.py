@@ -223,6 +223,33 @@ class PlotTest(Drawing, unittest.TestCase):
         self.assertEqual(result.stdout.split(), [str(out / f"{s}.png") for s in stems])
         self.assertEqual(sorted(p.name for p in out.iterdir()), sorted(f"{s}.png" for s in stems))
 
+    def test_sweep_vary(self):
+        """A sweep --vary run gives one plot per value, titled with it, and one plot with every
+        value's points, a legend entry per value, smallest value first."""
+        points = [sweep_point(MODERN, 0.001, 0.3, pareto=True),
+                  sweep_point(BOX2D.format(8, 1), 0.005, 0.1, pareto=True)]
+        sweep = {"schema": "chainbench.sweep/1", "scenes": [
+            {"scene": {"name": "stack", "bodies": 16, "steps": steps,
+                       "vary": {"key": "dt", "text": text, "value": value}},
+             "reference": "expect", "points": points}
+            for text, value, steps in (("1/60", 1 / 60, 120), ("1/30", 1 / 30, 60))]}
+        out = self.dir / "vary"
+        path = self.write("vary.json", json.dumps(sweep))
+        result = self.run_plot("sweep", path, "--out", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        stems = ["sweep_stack_dt_1_60", "sweep_stack_dt_1_30", "sweep_stack_by_dt"]
+        self.assertEqual(result.stdout.split(), [str(out / f"{s}.png") for s in stems])
+        sweep_module = plotting("sweep")
+        scenes = sweep_module.load_sweep(path)
+        for scene in scenes:
+            scene["usable"] = scene["points"]
+            for p in scene["usable"]:
+                p["y"] = p["rms"]
+        fig = self.drawn("sweep", "plot_varied", scenes, self.dir / "unused", False, set())
+        legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+        self.assertEqual(legend[:2], ["dt=1/60 (2 points)", "dt=1/30 (2 points)"])  # ascending
+        self.assertIn("stack: error against time per step for each dt", fig.axes[0].get_title())
+
     def test_sweep_note(self):
         """Points are labelled with the settings their labels show, and the note says so."""
         sweep = {"schema": "chainbench.sweep/1", "scenes": [

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define FAULT_NONE 0
 #define FAULT_NO_ENTRY 1      /* exports no entry point */
@@ -21,6 +22,9 @@
 #define FAULT_NAN 9           /* positions turn to NaN at step 2 */
 #define FAULT_CRASH 10        /* dies of SIGSEGV at step 2 */
 #define FAULT_VELOCITY 11     /* refuses every velocity */
+#define FAULT_ABORT 12        /* aborts (SIGABRT) at step 10 */
+#define FAULT_HANG 13         /* never returns from step 10 */
+#define FAULT_EXIT 14         /* calls exit(0) at step 10, as a plugin that quits might */
 
 #ifndef TEST_PLUGIN_FAULT
 #define TEST_PLUGIN_FAULT FAULT_NONE
@@ -81,6 +85,15 @@ static int step(cb_world* w, char* error, size_t error_size) {
     return -1;
   }
   if (TEST_PLUGIN_FAULT == FAULT_CRASH && w->steps == 2) raise(SIGSEGV);
+  if (TEST_PLUGIN_FAULT == FAULT_ABORT && w->steps == 10) abort();
+  if (TEST_PLUGIN_FAULT == FAULT_EXIT && w->steps == 10) exit(0);
+  if (TEST_PLUGIN_FAULT == FAULT_HANG && w->steps == 10) {
+    /* A test waits for this file to know the hang has begun (CHAINBENCH_TEST_HANG_MARK). */
+    const char* mark = getenv("CHAINBENCH_TEST_HANG_MARK");
+    FILE* f = mark ? fopen(mark, "w") : NULL;
+    if (f) fclose(f);
+    for (;;) pause();
+  }
   for (i = 0; i < w->count; ++i) {
     cb_body* b = &w->bodies[i];
     if (b->kind == CB_STATIC) continue;

@@ -63,10 +63,16 @@ def run_json(error, passed):
             "comparison": [{"engine": "FAST", "final_position_error": {"max": error}}]}
 
 
+def tables_after_summary(*args):
+    """The lines of bench_table.tables() after its opening summary (tested on its own below)."""
+    lines = bench_table.tables(*args).splitlines()
+    assert lines[0].startswith("**`fast` against every engine"), lines[0]
+    return lines[2:]
+
+
 class BenchTableTest(unittest.TestCase):
     def test_rows_follow_the_benchmark_and_name_their_settings(self):
-        text = bench_table.tables(CONTEXT, RUNS)
-        lines = text.splitlines()
+        lines = tables_after_summary(CONTEXT, RUNS)
         self.assertIn("| scene | bodies | fast ms/step | ref ms/step | ref / fast | fast ns/body/step |",
                       lines[0])
         self.assertTrue(lines[2].startswith("| `stack` | 16 |"), lines[2])
@@ -78,7 +84,7 @@ class BenchTableTest(unittest.TestCase):
     def test_accuracy_sits_beside_the_speed(self):
         accuracy = {("stack", ""): (run_json(0.0094, (True, True)), None),
                     ("pile", "1000"): (run_json(0.09, (True, False)), 60)}
-        lines = bench_table.tables(CONTEXT, RUNS, accuracy).splitlines()
+        lines = tables_after_summary(CONTEXT, RUNS, accuracy)
         self.assertIn("| ref / fast | fast vs ref max m | meets the scene's answer |", lines[0])
         self.assertIn("| 10.0x | 0.0094 | `fast`, `ref` |", lines[2])
         self.assertIn("| 20.0x | 0.09 (60 steps) | `fast` |", lines[3])
@@ -86,7 +92,7 @@ class BenchTableTest(unittest.TestCase):
 
 class MovingTablesTest(unittest.TestCase):
     def test_headline_is_the_moving_scenes_at_the_size_every_engine_ran(self):
-        lines = bench_table.tables(MOVING_CONTEXT, MOVING_RUNS).splitlines()
+        lines = tables_after_summary(MOVING_CONTEXT, MOVING_RUNS)
         self.assertTrue(lines[0].startswith("The moving scenes"), lines[0])
         self.assertEqual(lines[2], "| moving scene | bodies | `fast` ms/step | `ref` | `ref:sleep=1` |")
         # 10,000 columns ran in `fast` only: the headline takes the 1,000 the others ran too.
@@ -99,10 +105,27 @@ class MovingTablesTest(unittest.TestCase):
                "reference_run": {"engine": "REF", "label": "ref",
                                  "expect": {"pass": True, "max_error": 0.0168}},
                "comparison": [{"engine": "FAST", "final_position_error": {"max": 0.02}}]}
-        lines = bench_table.tables(MOVING_CONTEXT, MOVING_RUNS, {("rain", "1000"): (run, None)}).splitlines()
+        lines = tables_after_summary(MOVING_CONTEXT, MOVING_RUNS, {("rain", "1000"): (run, None)})
         self.assertIn("| error |", lines[2])
         self.assertEqual(lines[4], "| `rain` cols=1,000 | 11,910 | 1.000 | 0 m | 8.0x (0.017 m) | "
                                    "5.0x (0.071 m, misses) |")
+
+    def test_summary_gives_every_engine_sleeping_or_not_and_where_the_subject_loses(self):
+        runs = dict(MOVING_RUNS)
+        runs[("pyr", "ref:sleep=1", "10")] = bench("pyr/ref:sleep=1/10", 0.1, 5510, 18)
+        context = dict(MOVING_CONTEXT, chainbench_caveat_ref="ref is a debug build")
+        summary = bench_table.tables(context, runs).splitlines()[0]
+        self.assertEqual(
+            summary,
+            "**`fast` against every engine, with sleeping off and on.** How many times faster "
+            "`fast` steps, on the rows of the table below that both ran: on the moving scenes, "
+            "`ref`† 8.0x (`rain` cols=1,000); `ref:sleep=1`† 5.0x (`rain` cols=1,000); on the "
+            "scenes that come to rest or are pushed, `ref`† 10.0x (`many_pyramids` rows=cols=10); "
+            "`ref:sleep=1`† 0.3x (`many_pyramids` rows=cols=10). **Where `fast` loses:** "
+            "`ref:sleep=1`† steps `many_pyramids` rows=cols=10 3.0x faster (0.100 against 0.300 "
+            "ms per step). † ref is a debug build.")
+        self.assertIn("No engine steps any row faster than `fast`.",
+                      bench_table.tables(CONTEXT, RUNS).splitlines()[0])
 
     def test_sleep_settings_are_columns_of_their_own(self):
         lines = bench_table.tables(MOVING_CONTEXT, MOVING_RUNS).splitlines()

@@ -1,0 +1,94 @@
+#include "scene_vary.h"
+
+#include "input_error.h"
+#include "scene_library.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+namespace chainbench {
+namespace {
+
+// Every digit a double needs to read back as itself.
+std::string exact_text(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+double parse_value(const std::string& what, const std::string& text) {
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) return parse_number(what, text);
+  const double num = parse_number(what, text.substr(0, slash));
+  const double den = parse_number(what, text.substr(slash + 1));
+  if (den == 0.0) throw InputError(what + ": \"" + text + "\" divides by zero");
+  const double v = num / den;
+  if (!std::isfinite(v)) throw InputError(what + ": \"" + text + "\" is not a finite number");
+  return v;
+}
+
+}  // namespace
+
+SceneVary parse_vary(const std::string& text) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--vary \"" + text + "\": expected KEY=v1,v2,... (such as dt=1/30,1/60)");
+  SceneVary vary;
+  vary.key = text.substr(0, eq);
+  const std::string what = "--vary " + vary.key;
+  std::size_t begin = eq + 1;
+  while (true) {
+    const std::size_t comma = std::min(text.find(',', begin), text.size());
+    std::string value = text.substr(begin, comma - begin);
+    if (value.empty()) throw InputError(what + ": an empty value in \"" + text + "\"");
+    const double v = parse_value(what, value);
+    if (std::find(vary.values.begin(), vary.values.end(), v) != vary.values.end())
+      throw InputError(what + ": value " + value + " given twice");
+    vary.texts.push_back(std::move(value));
+    vary.values.push_back(v);
+    if (comma == text.size()) break;
+    begin = comma + 1;
+  }
+  return vary;
+}
+
+Scene make_varied_scene(std::string_view name, const std::vector<std::string>& sets,
+                        const SceneVary& vary, std::size_t k) {
+  const auto sets_key = [&](const std::string& key) {
+    return std::any_of(sets.begin(), sets.end(), [&](const std::string& kv) {
+      return kv.compare(0, key.size() + 1, key + "=") == 0;
+    });
+  };
+  if (sets_key(vary.key))
+    throw InputError("--vary " + vary.key + ": --set " + vary.key + " gives it a single value too");
+  const SceneRecipe* recipe = find_recipe(name);
+  if (!recipe) return make_scene(name, sets);  // refused there, naming the scenes
+  const std::vector<SceneParam> params = all_params(*recipe);
+  const auto p = std::find_if(params.begin(), params.end(),
+                              [&](const SceneParam& q) { return q.key == vary.key; });
+  if (p == params.end()) {
+    throw InputError("--vary " + vary.key + ": scene " + recipe->name + " has no parameter \"" +
+                     vary.key + "\" (chainbench list shows them)");
+  }
+  const double v = vary.values[k];
+  if (v < p->min || v > p->max || (p->integer && v != std::floor(v))) {
+    throw InputError("--vary " + vary.key + "=" + vary.texts[k] + ": scene " + recipe->name +
+                     " takes " + (p->integer ? "whole numbers" : "values") + " in [" +
+                     exact_text(p->min) + ", " + exact_text(p->max) + "]");
+  }
+  std::vector<std::string> with = sets;
+  with.push_back(vary.key + "=" + exact_text(vary.values[k]));
+  if (vary.key == "dt" && !sets_key("steps")) {
+    const double steps = std::round(recipe->steps * (1.0 / 60.0) / v);
+    if (steps > limits::kMaxSteps) {
+      throw InputError("--vary dt=" + vary.texts[k] + ": scene " + recipe->name +
+                       " would need more than " + std::to_string(limits::kMaxSteps) +
+                       " steps to last its default time");
+    }
+    with.push_back("steps=" + exact_text(std::max(1.0, steps)));
+  }
+  return make_scene(name, with);
+}
+
+}  // namespace chainbench

@@ -1,0 +1,97 @@
+// Output files, whole or not at all: the target changes only when an output is committed, keeps
+// its mode and its symbolic link, and no temporary outlives its output.
+#include "output_file.h"
+#include "input_error.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace chainbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string folder(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("chainbench_output_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir.string() + "/";
+}
+
+std::string read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::size_t files_in(const std::string& dir) {
+  return static_cast<std::size_t>(
+      std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+TEST(OutputFile, AnOutputNotCommittedLeavesThePreviousFileAndNoTemporary) {
+  const std::string dir = folder("uncommitted");
+  std::ofstream(dir + "out.json") << "previous";
+  {
+    const auto out = open_output(dir + "out.json", "--json");
+    out->stream() << "half of a new fi";
+    EXPECT_EQ(files_in(dir), 2u);  // the target and its temporary
+    EXPECT_EQ(read(dir + "out.json"), "previous");
+  }  // an error unwinds past it
+  EXPECT_EQ(read(dir + "out.json"), "previous");
+  EXPECT_EQ(files_in(dir), 1u);
+}
+
+TEST(OutputFile, ACommittedOutputReplacesItsTargetKeepingModeAndLink) {
+  const std::string dir = folder("committed");
+  std::ofstream(dir + "real.csv") << "previous";
+  fs::permissions(dir + "real.csv", fs::perms(0640));
+  fs::create_symlink(dir + "real.csv", dir + "link.csv");
+  const auto out = open_output(dir + "link.csv", "--csv");
+  const auto fresh = open_output(dir + "new.csv", "--json");
+  out->stream() << "new";
+  fresh->stream() << "fresh";
+  commit_outputs({out.get(), fresh.get()});
+  EXPECT_TRUE(fs::is_symlink(dir + "link.csv"));
+  EXPECT_EQ(read(dir + "real.csv"), "new");
+  EXPECT_EQ(read(dir + "new.csv"), "fresh");
+  EXPECT_EQ(fs::status(dir + "real.csv").permissions() & fs::perms::all, fs::perms(0640));
+  EXPECT_EQ(files_in(dir), 3u);
+}
+
+TEST(OutputFile, ADeviceIsWrittenDirectly) {
+  const auto out = open_output("/dev/null", "--json");
+  out->stream() << "nothing";
+  commit_outputs({out.get()});
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+}
+
+TEST(OutputFile, AFullDeviceIsAnOutputError) {
+  const auto out = open_output("/dev/full", "--json");
+  out->stream() << std::string(1 << 16, 'x');
+  EXPECT_THROW(commit_outputs({out.get()}), OutputError);
+}
+
+TEST(OutputFile, AnOutputThatNamesAnInputOrAnotherOutputIsRefused) {
+  const std::string dir = folder("clash");
+  std::ofstream(dir + "s.json") << "{}";
+  fs::create_hard_link(dir + "s.json", dir + "hard.json");
+  const std::string scene = dir + "s.json", dotted = dir + "./s.json", hard = dir + "hard.json";
+  const std::string other = dir + "other.json",
+                    again = dir + "../chainbench_output_clash/other.json";
+  EXPECT_THROW(refuse_clashing_files({{"--json", &dotted}}, {{"--scene-file", &scene}}),
+               InputError);
+  EXPECT_THROW(refuse_clashing_files({{"--json", &hard}}, {{"--scene-file", &scene}}), InputError);
+  EXPECT_THROW(refuse_clashing_files({{"--json", &other}, {"--csv", &again}}), InputError);
+  EXPECT_NO_THROW(refuse_clashing_files({{"--json", &other}}, {{"--scene-file", &scene}}));
+}
+
+}  // namespace
+}  // namespace chainbench

@@ -165,7 +165,9 @@ def breaks(stress, labels):
         run = [c for c in cases if c["verdict"] != "skipped"]
         verdicts, groups = {}, {}
         for c in bad:
-            verdicts[c["verdict"]] = verdicts.get(c["verdict"], 0) + 1
+            # A near miss (every failed check within a tenth of its tolerance) is tallied apart.
+            kind = c["verdict"] + (" (near miss)" if c.get("near_miss") else "")
+            verdicts[kind] = verdicts.get(kind, 0) + 1
             groups[c["group"]] = groups.get(c["group"], 0) + 1
         text = f"`{lb}` is ok on {len(run) - len(bad)} of {len(run)}"
         if bad:

@@ -5,8 +5,10 @@
 // needs for a world at rest, or exactly a family's window for a moving scene, so that every
 // engine does the same work (families.h). Families are keyed by size where the scene scales, so
 // --benchmark_format=json carries a complexity fit over it. Counters: bodies, time per body per
-// step, the share of steps cut short, the heap a world holds per body, and every counter the
-// engine declares (registry.h), contacts among them.
+// step, the share of steps cut short, the heap a world holds per body, the median and the slowest
+// single step (the worst frame a game budgets for), and every counter the engine declares
+// (registry.h), contacts among them. Each step is timed on the steady clock and handed to Google
+// Benchmark as manual time, so that the median and the slowest come from the times it sums.
 #include "engine.h"
 #include "engine_spec.h"
 #include "families.h"
@@ -24,6 +26,7 @@
 #endif
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -77,14 +80,18 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
   const double held = heap_in_use() - heap_before;
   CounterTotals counted(*engine);
   double degraded = 0.0;
+  std::vector<double> step_ms;
+  step_ms.reserve(static_cast<std::size_t>(state.max_iterations));  // no growth while timing
+  using Clock = std::chrono::steady_clock;
   for (auto _ : state) {
+    const auto t0 = Clock::now();
     engine->step(step++);
+    const std::chrono::duration<double> took = Clock::now() - t0;
+    state.SetIterationTime(took.count());
+    step_ms.push_back(1e3 * took.count());
     degraded += engine->degraded();
-    if (family.window > 0) {  // a moving scene: count every timed step, outside the timing
-      state.PauseTiming();
-      counted.add(*engine);
-      state.ResumeTiming();
-    }
+    // A moving scene: count every timed step, outside the time measured.
+    if (family.window > 0) counted.add(*engine);
   }
   const auto bodies = static_cast<double>(scene.bodies.size());
   const auto iterations = static_cast<double>(state.iterations());
@@ -94,6 +101,13 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
       bodies * iterations, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["degraded"] = degraded / iterations;
   state.counters["bytes_per_body"] = held / bodies;
+  // The median step and the slowest, ms: a mean hides the frame that misses a game's budget.
+  if (!step_ms.empty()) {
+    const auto middle = step_ms.begin() + static_cast<std::ptrdiff_t>(step_ms.size() / 2);
+    std::nth_element(step_ms.begin(), middle, step_ms.end());
+    state.counters["step_ms_median"] = *middle;
+    state.counters["step_ms_max"] = *std::max_element(step_ms.begin(), step_ms.end());
+  }
   // A world at rest: its counters over a few more steps (some engines count by walking their
   // contacts, which the timing must not include).
   if (family.window == 0) {
@@ -187,11 +201,15 @@ void register_plain_box2d3() {
         PlainBox2d3Pyramid world(static_cast<int>(s.range(0)), substeps);
         for (int k = 0; k < warmup; ++k)
           world.step();
-        for (auto _ : s)
+        using Clock = std::chrono::steady_clock;
+        for (auto _ : s) {  // timed as step_benchmark times the engines: the step alone
+          const auto t0 = Clock::now();
           world.step();
+          s.SetIterationTime(std::chrono::duration<double>(Clock::now() - t0).count());
+        }
         s.counters["bodies"] = static_cast<double>(world.bodies());
       });
-  b->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(0.5);
+  b->Unit(benchmark::kMillisecond)->UseManualTime()->MinTime(0.5);
   for (const int size : pyramid->sizes)
     b->Arg(size);
 }
@@ -291,7 +309,7 @@ void register_all(const std::string& engine_list) {
       auto* b = benchmark::RegisterBenchmark(
           (family.name + "/" + spec.label()).c_str(),
           [family, spec](benchmark::State& s) { step_benchmark(s, family, spec); });
-      b->Unit(benchmark::kMillisecond)->UseRealTime();
+      b->Unit(benchmark::kMillisecond)->UseManualTime();
       if (family.window > 0) {
         b->Iterations(family.window);
       } else {

@@ -5,8 +5,10 @@
 #include <sys/wait.h>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,8 +19,7 @@ struct Result {
   std::string out;  // stdout and stderr
 };
 
-Result chainbench(const std::string& args) {
-  const std::string cmd = std::string(CHAINBENCH_EXE) + " " + args + " 2>&1";
+Result run_command(const std::string& cmd) {
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return {-1, "popen failed"};
   Result r{0, {}};
@@ -28,6 +29,15 @@ Result chainbench(const std::string& args) {
   const int raw = pclose(pipe);
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return r;
+}
+
+Result chainbench(const std::string& args) {
+  return run_command(std::string(CHAINBENCH_EXE) + " " + args + " 2>&1");
+}
+
+// The same with stdout and stderr a terminal (script(1)), as a user at one sees it.
+Result chainbench_in_terminal(const std::string& args) {
+  return run_command("script -qec '" + std::string(CHAINBENCH_EXE) + " " + args + "' /dev/null");
 }
 
 // The engines that run when none are named: chain, chain:variant=seed2014, box2d, chipmunk, and
@@ -44,6 +54,7 @@ TEST(Cli, RunWritesTheDesignJsonAndNothingMovesAgainstAWall) {
       chainbench("run --scene push_into_wall --set n=4 --set steps=60 --json " + json_path);
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("ms/step"), std::string::npos);
+  EXPECT_NE(r.out.find("max ms"), std::string::npos) << r.out;
   nlohmann::json j;
   std::ifstream(json_path) >> j;
   EXPECT_EQ(j["schema"], "chainbench.run/1");
@@ -57,8 +68,14 @@ TEST(Cli, RunWritesTheDesignJsonAndNothingMovesAgainstAWall) {
     SCOPED_TRACE(run["engine"].get<std::string>());
     for (const char* key : {"engine", "final_positions", "ms_per_step", "metrics"})
       EXPECT_TRUE(run.contains(key)) << key;
-    for (const char* key : {"median", "mean", "p95"})
+    for (const char* key : {"median", "mean", "p95", "p99", "max"})
       EXPECT_TRUE(run["ms_per_step"].contains(key)) << key;
+    // The worst frame is the slowest step: never below the quantiles under it.
+    const auto& ms = run["ms_per_step"];
+    EXPECT_GE(ms.value("median", -1.0), 0.0);
+    EXPECT_GE(ms.value("p95", -1.0), ms.value("median", 0.0));
+    EXPECT_GE(ms.value("p99", -1.0), ms.value("p95", 0.0));
+    EXPECT_GE(ms.value("max", -1.0), ms.value("p99", 0.0));
     for (const char* key : {"energy_free_displacement", "max_penetration", "peak_speed", "finite",
                             "stable", "hash"}) {
       EXPECT_TRUE(run["metrics"].contains(key)) << key;
@@ -97,7 +114,9 @@ TEST(Cli, CsvAndTraceAreWritten) {
   std::string header, row;
   std::getline(csv, header);
   std::getline(csv, row);
-  EXPECT_EQ(header.rfind("scene,engine,bodies,steps", 0), 0u);
+  EXPECT_EQ(header.rfind("scene,engine,bodies,steps,dt,ms_median,ms_mean,ms_p95,ms_p99,ms_max,", 0),
+            0u)
+      << header;
   EXPECT_EQ(row.rfind("squeeze,\"chain:variant=modern", 0), 0u) << row;
   int comments = 0, lift = 0, others = 0;
   std::getline(trace, header);
@@ -142,6 +161,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"run --scene stack --engines chain --require box2d",
                 "--require box2d: not among the engines run (chain)"},
         BadCall{"run --scene stack --require chain:colour=3", "unknown key"},
+        // A default the scene rules out is named with the reason it was left out.
+        BadCall{"run --scene stack --set friction=0.5 --require chain:variant=seed2014",
+                "--require chain:variant=seed2014: left out of the default engines, scene stack: "},
         BadCall{"run --scene stack --json /nonexistent/dir/out.json",
                 "--json: cannot write /nonexistent/dir/out.json: no such directory "
                 "/nonexistent/dir"},
@@ -342,6 +364,18 @@ TEST(Cli, AnOutputFileThatCannotBeFinishedIsNamed) {
   }
 }
 
+// The progress line (drawn only on a terminal: `script` gives the run one) names each engine by
+// the label the table uses, after the scene, not by its canonical spec.
+TEST(Cli, TheProgressLineShowsLabels) {
+  if (std::system("command -v script > /dev/null 2>&1") != 0) GTEST_SKIP() << "no script(1)";
+  const Result r = chainbench_in_terminal(
+      "run --scene push_row --set steps=400 --engines chain:velocity=zero --reference none "
+      "--metrics none");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("\rpush_row: chain:velocity=zero "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\rchain:variant="), std::string::npos) << r.out;
+}
+
 TEST(Cli, ListAndEnginesDescribeWhatCanRun) {
   const Result list = chainbench("list");
   EXPECT_EQ(list.status, 0);
@@ -355,7 +389,21 @@ TEST(Cli, ListAndEnginesDescribeWhatCanRun) {
   EXPECT_NE(list.out.find("[0, 2147483647] whole"), std::string::npos) << list.out;
   EXPECT_NE(list.out.find("[1, 10000000] whole"), std::string::npos) << list.out;
   EXPECT_EQ(list.out.find("e+0"), std::string::npos) << list.out;
+  // Every key --set accepts is listed under each scene, those every scene takes included.
+  std::istringstream lines(list.out.substr(list.out.find("\n  stack: ") + 1));
+  std::string line, stack_keys;
+  std::getline(lines, line);  // the scene's own line; its key table follows, to the next scene's
+  while (std::getline(lines, line) &&
+         !(line.size() > 2 && line.rfind("  ", 0) == 0 && line[2] != ' '))
+    stack_keys += line + "\n";
+  for (const char* key : {"steps", "dt", "friction", "restitution", "rotation", "offset"})
+    EXPECT_NE(stack_keys.find(std::string("    ") + key + " "), std::string::npos) << key;
   const Result engines = chainbench("engines");
+  // Limits an engine imposes whatever the scene asks.
+  EXPECT_NE(engines.out.find("  limit: moves no body more than this in one world step "
+                             "(b2_maxTranslation): 2 m"),
+            std::string::npos)
+      << engines.out;
   EXPECT_EQ(engines.status, 0);
   EXPECT_NE(engines.out.find("chain:variant=modern,velocity=inelastic"), std::string::npos)
       << engines.out;
@@ -470,10 +518,11 @@ TEST(Cli, AReplayPageKeepsItsSizeLimitOrIsRefused) {
   const std::string page = temp("limit.html");
   std::remove(page.c_str());
   Result r = chainbench(
-      "replay --scene pyramid --set base=60 --engines chain,box2d --max-mb 0.1 --out " + page);
+      "replay --scene pyramid --set base=60 --engines chain,box2d --replay-mb 0.1 --out " + page);
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find("needs at least"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("more than --max-mb 0.1 allows"), std::string::npos) << r.out;
+  // One name for the limit, as `run --replay-mb` has it; the old --max-mb is still read.
+  EXPECT_NE(r.out.find("more than --replay-mb 0.1 allows"), std::string::npos) << r.out;
   EXPECT_FALSE(std::ifstream(page).good());
   r = chainbench("replay --scene pyramid --set base=60 --engines chain,box2d --max-mb 0.5 --out " +
                  page);

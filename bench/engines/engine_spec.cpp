@@ -114,7 +114,10 @@ std::string EngineSpec::label() const {
   const EngineDef& def = engine_def(engine);
   std::string s = engine;
   bool first = true;
-  for (const auto& [key, value] : settings) {
+  for (const auto& setting : settings) {
+    // Named copies of the pair's halves: clang before 16 cannot capture a structured binding.
+    const std::string& key = setting.first;
+    const std::string& value = setting.second;
     const auto declared = std::find_if(def.keys.begin(), def.keys.end(),
                                        [&](const KeyDef& k) { return k.name == key; });
     // A passed-on key is always shown; a declared one when it differs from its default here, a

@@ -171,9 +171,11 @@ void add_sweep_command(CLI::App& app, int* status) {
       ->check(non_empty_path("output file"));
   sweep_app->add_option("--csv", args->csv, "write one CSV row per point here")
       ->check(non_empty_path("output file"));
-  sweep_app->add_option("--shard", args->shard,
-                        "K/N: run the K-th of N parts of the grid (points K, K+N, ...); "
-                        "chainbench merge joins the parts' JSON");
+  sweep_app
+      ->add_option("--shard", args->shard,
+                   "K/N: run the K-th of N parts of the grid (points K, K+N, ...); "
+                   "chainbench merge joins the parts' JSON")
+      ->check(non_empty_text("--shard", "K/N"));
   sweep_app->callback([args, status] {
     refuse_shared_outputs({{"--json", &args->json}, {"--csv", &args->csv}});
     *status = run(*args);

@@ -160,6 +160,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"sweep --scene stack --grid foo=1", "unknown engine"},
         BadCall{"sweep --scene stack --shard 0/3", "--shard 0/3: expected K/N"},
         BadCall{"stress --quick --shard 2", "--shard 2: expected K/N"},
+        BadCall{"sweep --scene stack --shard ''", "--shard is empty: give K/N"},
+        BadCall{"stress --quick --shard ''", "--shard is empty: give K/N"},
+        // --set numbers in the grammar of --steps.
+        BadCall{"run --scene stack --set n=0x10", "\"0x10\" is not a number"},
+        BadCall{"run --scene stack --set n=+2", "\"+2\" is not a number"},
+        BadCall{"run --scene stack --set 'n= 2'", "\" 2\" is not a number"},
+        BadCall{"run --scene stack --set 'n=2 '", "\"2 \" is not a number"},
         BadCall{"replay --scene stack", "--out is required"},
         BadCall{"replay --scene random_pile --set n=100000 --out /tmp/x.html",
                 "more than a page holds"},

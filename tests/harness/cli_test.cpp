@@ -221,6 +221,43 @@ TEST_P(RefusedCall, ExitsWithStatusTwoAndSaysWhy) {
   EXPECT_NE(r.out.find(GetParam().message), std::string::npos) << r.out;
 }
 
+// Large bad inputs are refused as small ones are (a message, exit 2), with what they echo cut
+// to a readable length. (Their time, linear in the input, is measured outside the tests.)
+TEST(Cli, LargeBadInputsAreRefusedWithShortMessages) {
+  const std::string bodies = temp("bad_bodies.json");
+  {
+    std::ofstream f(bodies);
+    f << R"({"name": "bad", "bodies": [)";
+    for (int i = 0; i < 40000; ++i)
+      f << (i ? "," : "") << R"({"center": [0, "x"]})";
+    f << "]}";
+  }
+  Result r = chainbench("run --scene-file " + bodies);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("more"), std::string::npos) << r.out.substr(0, 2000);
+  EXPECT_LT(r.out.size(), 20000u);
+  const std::string keys = temp("many_keys.json");
+  {
+    std::ofstream f(keys);
+    f << R"({"name": "keys", "bodies": [], "x": {)";
+    for (int i = 0; i < 80000; ++i)
+      f << (i ? "," : "") << "\"k" << i << "\": 1";
+    f << R"(, "k7": 2}})";
+  }
+  r = chainbench("run --scene-file " + keys);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("x.k7: is given twice"), std::string::npos) << r.out.substr(0, 2000);
+  std::string engines;
+  for (int i = 1; i < 5000; ++i)
+    engines += "chain:budget=" + std::to_string(i) + ",";
+  engines += "chain:budget=1";
+  r = chainbench("run --scene stack --engines '" + engines + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("bytes)\": chain:budget=1 given twice"), std::string::npos)
+      << r.out.substr(0, 2000);
+  EXPECT_LT(r.out.size(), 1000u);
+}
+
 // The first step is left out of the timing as a warm-up, except when it is the only one: a run
 // of one step is timed by it rather than reported as taking no time.
 TEST(Cli, ARunOfOneStepIsTimedByThatStep) {

@@ -598,4 +598,24 @@ TEST(Cli, MergeNamesAMalformedPartsFieldAndWhy) {
   nlohmann::ordered_json bad_index = good;
   bad_index["shard"]["index"] = "one";
   refused(bad_index, "shard.index: should be a whole number, got string");
+  // Numbers that do not fit, without narrowing, and a unit listed twice.
+  nlohmann::ordered_json big_count = good;
+  big_count["shard"]["count"] = 4294967298u;
+  refused(big_count, "shard.count: 4294967298 is outside [-2147483647, 2147483647]");
+  nlohmann::ordered_json negative_units = good;
+  negative_units["shard"]["units"] = -1;
+  refused(negative_units, "shard.units: -1 is outside [0, 2147483647]");
+  nlohmann::ordered_json twice = good;
+  twice["shard"]["ran"].push_back(twice["shard"]["ran"][0]);
+  refused(twice, "shard.ran: unit 0 listed twice");
+  // Text no JSON library hands over as a value: refused as read, naming the file.
+  auto refused_text = [&](const std::string& text, const std::string& message) {
+    const std::string path = ::testing::TempDir() + "cb_merge_text.json";
+    std::ofstream(path) << text;
+    const Result r = chainbench("merge " + path);
+    EXPECT_EQ(r.status, 2) << r.out.substr(0, 2000);
+    EXPECT_NE(r.out.find(path + ": " + message), std::string::npos) << r.out.substr(0, 2000);
+  };
+  refused_text("{\"shard\": 1e400}", "holds a number beyond double range");
+  refused_text(std::string(100000, '[') + std::string(100000, ']'), "nested deeper than 64 levels");
 }

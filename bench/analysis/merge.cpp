@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
+#include <set>
 
 namespace chainbench {
 namespace {
@@ -93,22 +95,35 @@ Block read_block(const ShardPart& p) {
   field(p, s, "shard", "grid", &J::is_string, "a string");
   for (const char* key : {"index", "count", "units"})
     field(p, s, "shard", key, &J::is_number_integer, "a whole number");
+  // Whole numbers in [lo, 2^31 - 1], read without narrowing (4294967298 is not 2).
+  constexpr long long kMaxWhole = 2147483647;
+  auto whole = [&](const J& v, const std::string& name, long long lo) -> long long {
+    const bool fits = v.is_number_unsigned()
+                          ? v.get<std::uint64_t>() <= static_cast<std::uint64_t>(kMaxWhole)
+                          : v.get<long long>() >= lo && v.get<long long>() <= kMaxWhole;
+    if (!fits) {
+      throw InputError(p.file + ": " + name + ": " + v.dump() + " is outside [" +
+                       std::to_string(lo) + ", " + std::to_string(kMaxWhole) + "]");
+    }
+    return v.get<long long>();
+  };
+  Block b;
+  b.command = s.at("command").get<std::string>();
+  b.version = s.at("version").get<std::string>();
+  b.grid = s.at("grid").get<std::string>();
+  // index and count below 1 are refused further on, with what they should be.
+  b.index = static_cast<int>(whole(s.at("index"), "shard.index", -kMaxWhole));
+  b.count = static_cast<int>(whole(s.at("count"), "shard.count", -kMaxWhole));
+  b.units = static_cast<std::size_t>(whole(s.at("units"), "shard.units", 0));
+  std::set<std::size_t> listed;
   for (const J& u : field(p, s, "shard", "ran", &J::is_array, "an array")) {
-    if (!u.is_number_unsigned() && !(u.is_number_integer() && u.get<long long>() >= 0))
+    if (!u.is_number_integer())
       throw InputError(p.file + ": shard.ran: should hold whole numbers, got " +
                        std::string(u.type_name()));
-  }
-  Block b;
-  try {
-    b.command = s.at("command").get<std::string>();
-    b.version = s.at("version").get<std::string>();
-    b.grid = s.at("grid").get<std::string>();
-    b.index = s.at("index").get<int>();
-    b.count = s.at("count").get<int>();
-    b.units = s.at("units").get<std::size_t>();
-    b.ran = s.at("ran").get<std::vector<std::size_t>>();
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(p.file + ": shard block: " + e.what());
+    const auto unit = static_cast<std::size_t>(whole(u, "shard.ran", 0));
+    if (!listed.insert(unit).second)
+      throw InputError(p.file + ": shard.ran: unit " + std::to_string(unit) + " listed twice");
+    b.ran.push_back(unit);
   }
   const std::string schema = j.value("schema", "");
   if (schema != "chainbench." + b.command + "/1" || (b.command != "sweep" && b.command != "stress"))

@@ -120,12 +120,12 @@ class MetricsRecorder {
   // Whether body i moved in the step, or was left with a velocity or a position that is not finite
   // (whose displacement a full pass finds to be NaN every step).
   bool moved(std::size_t i, const BodyState& before, const BodyState& after) const {
-    return (after.position[i].x != before.position[i].x) |
-           (after.position[i].y != before.position[i].y) |
-           (scan().rotated() && after.angle[i] != before.angle[i]) | keeps_moving(i, after);
+    return after.position[i].x != before.position[i].x ||
+           after.position[i].y != before.position[i].y ||
+           (scan().rotated() && after.angle[i] != before.angle[i]) || keeps_moving(i, after);
   }
   static bool keeps_moving(std::size_t i, const BodyState& s) {
-    return (s.velocity[i].x != 0.0) | (s.velocity[i].y != 0.0) | !std::isfinite(s.position[i].x) |
+    return s.velocity[i].x != 0.0 || s.velocity[i].y != 0.0 || !std::isfinite(s.position[i].x) ||
            !std::isfinite(s.position[i].y);
   }
   void observe_all(const BodyState& before, const BodyState& after, int step, bool displacement,

@@ -161,14 +161,24 @@ ordered_json engine_json(const Scene& s, const EngineRun& run, const ReplayTrack
   return e;
 }
 
-// JSON inside a <script> element: "</" would end it early.
+// JSON inside a <script> element, with no <, > or & at all: "</script" would end it early, and
+// "<!--" followed by "<script" puts the HTML tokenizer in a state where the element's own end tag
+// no longer ends it (the page goes blank). JSON has these only inside strings, where \u003c and
+// the like mean the same characters.
 std::string script_safe(const ordered_json& j) {
   const std::string text = j.dump(-1, ' ', true);
   std::string out;
   out.reserve(text.size());
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    out += text[i];
-    if (text[i] == '<' && i + 1 < text.size() && text[i + 1] == '/') out += '\\';
+  for (const char c : text) {
+    if (c == '<') {
+      out += "\\u003c";
+    } else if (c == '>') {
+      out += "\\u003e";
+    } else if (c == '&') {
+      out += "\\u0026";
+    } else {
+      out += c;
+    }
   }
   return out;
 }

@@ -23,10 +23,24 @@ ShardPart read_part(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file + ": cannot read");
   ShardPart p{file, {}};
+  // A part is a few levels deep; a deeper one is refused as it is read, before anything walks
+  // it recursively (nlohmann's dump does).
+  constexpr int kMaxDepth = 64;
+  const auto limit = [&](int depth, nlohmann::ordered_json::parse_event_t,
+                         nlohmann::ordered_json&) {
+    if (depth > kMaxDepth) {
+      throw InputError(file + ": nested deeper than " + std::to_string(kMaxDepth) +
+                       " levels: not a part of a sharded run");
+    }
+    return true;
+  };
   try {
-    p.json = nlohmann::ordered_json::parse(in);
+    p.json = nlohmann::ordered_json::parse(in, limit);
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(file + ": not JSON (" + e.what() + ")");
+  } catch (const nlohmann::json::out_of_range& e) {
+    // 406: a number such as 1e400, beyond double range.
+    throw InputError(file + ": holds a number beyond double range (" + e.what() + ")");
   }
   return p;
 }

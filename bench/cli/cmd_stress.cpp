@@ -152,7 +152,8 @@ void add_stress_command(CLI::App& app, int* status) {
       ->check(non_empty_path("output file"));
   s->add_option("--shard", args->shard,
                 "K/N: run the K-th of N parts of the matrix (runs K, K+N, ...); chainbench merge "
-                "joins the parts' JSON");
+                "joins the parts' JSON")
+      ->check(non_empty_text("--shard", "K/N"));
   s->footer(
       "Verdicts, worst first: crash, hang, error, unstable, escaped, tunnelled, wrong, "
       "penetrating, budget, ok (skipped: the engine cannot do what the case needs).\nExit status 1 "

@@ -212,9 +212,11 @@ void add_sweep_command(CLI::App& app, int* status) {
   sweep_app->add_option("--vary", args->vary,
                         "KEY=v1,v2,...: run each --scene once per value of its parameter KEY "
                         "(values may be fractions: dt=1/30,1/60,1/120,1/240)");
-  sweep_app->add_option("--shard", args->shard,
-                        "K/N: run the K-th of N parts of the grid (points K, K+N, ...); "
-                        "chainbench merge joins the parts' JSON");
+  sweep_app
+      ->add_option("--shard", args->shard,
+                   "K/N: run the K-th of N parts of the grid (points K, K+N, ...); "
+                   "chainbench merge joins the parts' JSON")
+      ->check(non_empty_text("--shard", "K/N"));
   sweep_app->callback([args, status] {
     std::vector<NamedFile> inputs;
     for (const std::string& file : args->scene_files)

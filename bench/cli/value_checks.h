@@ -45,6 +45,15 @@ inline CLI::Validator non_empty_path(const std::string& what) {
       "");
 }
 
+// Text that is not empty, for an option whose empty value would otherwise read as "not given".
+inline CLI::Validator non_empty_text(const std::string& option, const std::string& form) {
+  return CLI::Validator(
+      [option, form](std::string& text) -> std::string {
+        return text.empty() ? option + " is empty: give " + form : std::string();
+      },
+      "");
+}
+
 // A finite number in [lo, hi].
 inline CLI::Validator number_in(double lo, double hi) {
   std::ostringstream r;

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <charconv>
 #include <filesystem>
+#include <map>
+#include <set>
 #include <stdexcept>
 
 namespace chainbench {
@@ -114,7 +116,10 @@ std::string EngineSpec::label() const {
   const EngineDef& def = engine_def(engine);
   std::string s = engine;
   bool first = true;
-  for (const auto& [key, value] : settings) {
+  for (const auto& setting : settings) {
+    // Named copies of the pair's halves: clang before 16 cannot capture a structured binding.
+    const std::string& key = setting.first;
+    const std::string& value = setting.second;
     const auto declared = std::find_if(def.keys.begin(), def.keys.end(),
                                        [&](const KeyDef& k) { return k.name == key; });
     // A passed-on key is always shown; a declared one when it differs from its default here, a
@@ -129,7 +134,7 @@ std::string EngineSpec::label() const {
 }
 
 EngineSpec parse_engine_spec(std::string_view text) {
-  const std::string where = "engine spec \"" + std::string(text) + "\"";
+  const std::string where = "engine spec \"" + cut_for_message(std::string(text)) + "\"";
   const std::size_t colon = text.find(':');
   const std::string name(text.substr(0, colon));
   const auto& registry = engine_registry();
@@ -189,7 +194,7 @@ EngineSpec parse_engine_spec(std::string_view text) {
 }
 
 std::vector<EngineSpec> parse_grid(std::string_view text) {
-  const std::string where = "--grid \"" + std::string(text) + "\"";
+  const std::string where = "--grid \"" + cut_for_message(std::string(text)) + "\"";
   const std::size_t colon = text.find(':');
   const std::string engine(text.substr(0, colon));
   std::vector<std::pair<std::string, std::vector<std::string>>> axes;
@@ -224,7 +229,9 @@ std::vector<EngineSpec> parse_grid(std::string_view text) {
 std::vector<EngineSpec> parse_engine_list(std::string_view text) {
   std::vector<std::string> specs;
   for (const std::string& token : split(text, ",;")) {
-    if (token.empty()) throw InputError("engine list \"" + std::string(text) + "\": empty entry");
+    if (token.empty()) {
+      throw InputError("engine list \"" + cut_for_message(std::string(text)) + "\": empty entry");
+    }
     const bool continues =
         token.find('=') != std::string::npos && token.find(':') == std::string::npos;
     if (continues && !specs.empty()) {
@@ -233,21 +240,23 @@ std::vector<EngineSpec> parse_engine_list(std::string_view text) {
       specs.push_back(token);
     }
   }
-  if (specs.empty()) throw InputError("engine list \"" + std::string(text) + "\": no engine");
+  if (specs.empty()) {
+    throw InputError("engine list \"" + cut_for_message(std::string(text)) + "\": no engine");
+  }
   std::vector<EngineSpec> out;
+  // Rows, `met by` and --require name engines by label: two engines must not share one. Looked
+  // up in maps, so that a list of n specs is checked in n log n.
+  std::map<std::string, std::string> str_of_label;
+  std::set<std::string> strs;
+  const std::string where = "engine list \"" + cut_for_message(std::string(text)) + "\"";
   for (const std::string& s : specs) {
     EngineSpec spec = parse_engine_spec(s);
-    // Rows, `met by` and --require name engines by label: two engines must not share one.
-    for (const EngineSpec& earlier : out) {
-      if (earlier.str() == spec.str()) {
-        throw InputError("engine list \"" + std::string(text) + "\": " + spec.label() +
-                         " given twice");
-      }
-      if (earlier.label() == spec.label()) {
-        throw InputError("engine list \"" + std::string(text) + "\": " + earlier.str() + " and " +
-                         spec.str() + " would both be labelled " + spec.label() +
-                         " (give the files different names)");
-      }
+    const std::string str = spec.str(), label = spec.label();
+    if (!strs.insert(str).second) throw InputError(where + ": " + label + " given twice");
+    const auto [earlier, fresh] = str_of_label.emplace(label, str);
+    if (!fresh) {
+      throw InputError(where + ": " + earlier->second + " and " + str + " would both be labelled " +
+                       label + " (give the files different names)");
     }
     out.push_back(std::move(spec));
   }

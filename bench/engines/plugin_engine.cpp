@@ -7,6 +7,7 @@
 // message naming the plugin (InputError: exit status 2, or an `error` verdict in stress).
 #include "drive_schedule.h"
 #include "input_error.h"
+#include "plugin_text.h"
 #include "registry.h"
 
 #include <chainbench/engine_plugin.h>
@@ -18,11 +19,15 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 
 namespace chainbench {
 namespace {
 
 constexpr std::size_t kMaxCounters = 16;
+constexpr std::size_t kNameBound = 64;     // a plugin's name: under 64 bytes, terminated
+constexpr std::size_t kCounterBound = 32;  // a counter's name: under 32 bytes, terminated
+constexpr std::size_t kErrorSize = 512;    // the error buffer chainbench hands a plugin
 
 // A loaded library. Never unloaded: its function pointers must outlive every world made from it.
 struct Plugin {
@@ -36,12 +41,11 @@ std::string describe(const Plugin& p) {
   return "plugin " + p.name + " (" + p.path + ")";
 }
 
-bool valid_counter_name(const char* name) {
-  if (!name || !*name) return false;
-  for (const char* c = name; *c; ++c) {
-    if (!((*c >= 'a' && *c <= 'z') || (*c >= '0' && *c <= '9') || *c == '_')) return false;
-  }
-  return std::string(name).size() < 32;
+// What a plugin wrote into an error buffer of kErrorSize bytes, as a message may quote it.
+std::string plugin_error(const char* error) {
+  const PluginText t = read_plugin_text(error, kErrorSize);
+  if (t.problem.empty()) return t.text.empty() ? "it gave no reason" : t.text;
+  return "its message " + t.problem + ", so it is not shown in full: " + t.shown;
 }
 
 Plugin open_plugin(const std::string& path) {
@@ -70,7 +74,16 @@ Plugin open_plugin(const std::string& path) {
     throw InputError(where + ": its cb_engine is " + std::to_string(p.api->size) +
                      " bytes, this chainbench's is " + std::to_string(sizeof(cb_engine)));
   }
-  p.name = p.api->name && *p.api->name ? p.api->name : "(unnamed)";
+  if (p.api->name) {
+    const PluginText name = read_plugin_text(p.api->name, kNameBound);
+    if (!name.problem.empty()) {
+      throw InputError(where + ": its name " + name.problem +
+                       " (a name is printable ASCII, under " + std::to_string(kNameBound) +
+                       " bytes): " + name.shown);
+    }
+    p.name = name.text;
+  }
+  if (p.name.empty()) p.name = "(unnamed)";
   if (!p.api->create || !p.api->set_velocity || !p.api->step || !p.api->read_state ||
       !p.api->destroy || (p.api->counter_count > 0 && !p.api->read_counters)) {
     throw InputError(describe(p) + ": its cb_engine leaves a required function null");
@@ -79,13 +92,27 @@ Plugin open_plugin(const std::string& path) {
     throw InputError(describe(p) + ": reports " + std::to_string(p.api->counter_count) +
                      " counters, more than " + std::to_string(kMaxCounters));
   }
+  if (const std::uint32_t unknown = p.api->capabilities & ~known_capabilities()) {
+    throw InputError(describe(p) + ": sets capability bits " + std::to_string(unknown) +
+                     " that this chainbench does not know (it knows CB_CAN_*, " +
+                     std::to_string(known_capabilities()) + " together)");
+  }
+  std::set<std::string> seen;
   for (std::uint32_t k = 0; k < p.api->counter_count; ++k) {
-    const char* name = p.api->counter_names ? p.api->counter_names[k] : nullptr;
-    if (!valid_counter_name(name)) {
+    const char* raw = p.api->counter_names ? p.api->counter_names[k] : nullptr;
+    const PluginText name = read_plugin_text(raw, kCounterBound);
+    const std::string problem =
+        name.problem.empty() ? counter_name_problem(name.text) : name.problem;
+    if (!problem.empty()) {
       throw InputError(describe(p) + ": counter " + std::to_string(k) +
-                       " has no valid name (letters a-z, digits and _, under 32)");
+                       " has no valid name (letters a-z, digits and _, under 32): its name " +
+                       problem + ": " + name.shown);
     }
-    p.counters.push_back({name, Aggregate::kMean, "reported by the plugin", name});
+    if (!seen.insert(name.text).second) {
+      throw InputError(describe(p) + ": counter " + std::to_string(k) + " is named " + name.text +
+                       ", as an earlier counter is: each counter needs a name of its own");
+    }
+    p.counters.push_back({name.text, Aggregate::kMean, "reported by the plugin", name.text});
   }
   return p;
 }
@@ -144,11 +171,11 @@ class PluginEngine final : public Engine {
     desc.bodies = bodies.data();
     desc.setting_count = static_cast<std::uint32_t>(settings.size());
     desc.settings = settings.data();
-    char error[512] = "";
+    char error[kErrorSize] = "";
     world_ = plugin_.api->create(&desc, error, sizeof error);
     if (!world_) {
       throw InputError(describe(plugin_) + ": could not build scene " + scene.name + ": " +
-                       (error[0] ? std::string(error) : "it gave no reason"));
+                       plugin_error(error));
     }
   }
 
@@ -167,14 +194,21 @@ class PluginEngine final : public Engine {
                          names_[d.body] + " at step " + std::to_string(step_index));
       }
     }
-    char error[512] = "";
+    char error[kErrorSize] = "";
     const int rc = plugin_.api->step(world_, error, sizeof error);
+    // Counted from 1, as verdicts count "at step N": the state after N steps.
     if (rc < 0) {
-      // Counted from 1, as verdicts count "at step N": the state after N steps.
       throw InputError(describe(plugin_) + ": step " + std::to_string(step_index + 1) +
-                       " failed: " + (error[0] ? std::string(error) : "it gave no reason"));
+                       " failed: " + plugin_error(error));
+    }
+    if (rc > 1) {
+      throw InputError(describe(plugin_) + ": step " + std::to_string(step_index + 1) +
+                       " returned " + std::to_string(rc) +
+                       ", which the plugin contract does not allow (0, 1 when cut short, or "
+                       "negative on error)");
     }
     degraded_ = rc == 1;
+    steps_ = step_index + 1;
   }
 
   void read_state(BodyState& out) const override {
@@ -201,7 +235,15 @@ class PluginEngine final : public Engine {
 
   std::span<const CounterDef> counter_defs() const override { return plugin_.counters; }
   std::span<const double> counters() const override {
-    if (!counters_.empty()) plugin_.api->read_counters(world_, counters_.data());
+    if (counters_.empty()) return counters_;
+    plugin_.api->read_counters(world_, counters_.data());
+    for (std::size_t k = 0; k < counters_.size(); ++k) {
+      if (!std::isfinite(counters_[k])) {
+        throw InputError(describe(plugin_) + ": counter " + plugin_.counters[k].name + " is " +
+                         (std::isnan(counters_[k]) ? "NaN" : "infinite") + " after step " +
+                         std::to_string(steps_) + " (a counter must be a finite number)");
+      }
+    }
     return counters_;
   }
   bool degraded() const override { return degraded_; }
@@ -213,6 +255,7 @@ class PluginEngine final : public Engine {
   std::vector<std::string> names_;
   mutable std::vector<double> positions_, velocities_, counters_;
   bool degraded_ = false;
+  int steps_ = 0;  // steps taken, for messages
 };
 
 }  // namespace

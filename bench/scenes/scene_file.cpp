@@ -10,7 +10,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
+#include <string_view>
 #include <unordered_map>
 
 namespace chainbench {
@@ -24,15 +26,22 @@ class Reader {
   explicit Reader(std::string source) : source_(std::move(source)) {}
 
   void problem(const std::string& path, const std::string& reason) {
-    if (problems_.size() < kMaxProblems) problems_.push_back(source_ + ": " + path + ": " + reason);
-    paths_.push_back(path);
+    // A path or key of any length is echoed cut (cut_for_message).
+    if (problems_.size() < kMaxProblems)
+      problems_.push_back(source_ + ": " + cut_for_message(path) + ": " + reason);
+    paths_.insert(path);
     ++count_;
   }
-  // Whether a problem was reported at `path`, at a part of it, or inside it.
+  // Whether a problem was reported at `path`, at a part of it (a prefix ending where a component
+  // does), or inside it. Ordered set lookups, so that refusing n bad bodies takes n log n.
   bool reported(const std::string& path) const {
-    return std::any_of(paths_.begin(), paths_.end(), [&](const std::string& p) {
-      return p.rfind(path, 0) == 0 || path.rfind(p, 0) == 0;
-    });
+    const auto inside = paths_.lower_bound(path);
+    if (inside != paths_.end() && inside->compare(0, path.size(), path) == 0) return true;
+    const std::string_view whole(path);
+    for (std::size_t k = 1; k < whole.size(); ++k) {
+      if ((whole[k] == '.' || whole[k] == '[') && paths_.count(whole.substr(0, k)) > 0) return true;
+    }
+    return false;
   }
   bool ok() const { return count_ == 0; }
   [[noreturn]] void fail() const {
@@ -154,7 +163,7 @@ class Reader {
   static constexpr std::size_t kMaxProblems = 50;
   std::string source_;
   std::vector<std::string> problems_;
-  std::vector<std::string> paths_;
+  std::set<std::string, std::less<>> paths_;  // every path a problem was reported at
   std::size_t count_ = 0;
 };
 
@@ -176,9 +185,8 @@ class JsonWalk : public nlohmann::json_sax<json> {
   bool key(string_t& k) override {
     Frame& f = frames_.back();
     f.key = k;
-    if (duplicates_ && std::find(f.keys.begin(), f.keys.end(), k) != f.keys.end())
+    if (!f.keys.insert(k).second && duplicates_)
       duplicates_->problem(path(), "is given twice (one value per key)");
-    f.keys.push_back(k);
     return true;
   }
   bool end_object() override { return close(); }
@@ -213,7 +221,7 @@ class JsonWalk : public nlohmann::json_sax<json> {
     bool array;
     std::size_t index = 0;
     std::string key;
-    std::vector<std::string> keys;
+    std::set<std::string> keys;  // a set: an object of n keys is checked in n log n
   };
   bool value() {
     if (!frames_.empty() && frames_.back().array) ++frames_.back().index;

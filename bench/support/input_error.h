@@ -12,7 +12,10 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Parses all of `text` as a finite number, or throws InputError("<what>: ...").
+// `text` as a message may echo it: whole up to 80 bytes, else its first 80 and "…(N bytes)".
+std::string cut_for_message(const std::string& text);
+// Parses all of `text` as a finite number, in the grammar of std::from_chars as every
+// command-line number (no '+', blanks or hexadecimal), or throws InputError("<what>: ...").
 double parse_number(const std::string& what, const std::string& text);
 // Parses all of `text` as an integer in [lo, hi], or throws InputError("<what>: ...").
 long long parse_integer(const std::string& what, const std::string& text, long long lo,

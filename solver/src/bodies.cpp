@@ -77,6 +77,12 @@ void gather(std::vector<T>& v, std::span<const std::uint32_t> order, std::vector
 
 }  // namespace
 
+Origin origin_of(const BodyDef& def) {
+  // Zero velocity for a static body, as append() stores it: a static body's velocity is ignored.
+  const bool moves = def.type != BodyType::kStatic;
+  return {def.center.x, def.center.y, moves ? def.velocity.x : 0.0, moves ? def.velocity.y : 0.0};
+}
+
 void Bodies::append(const BodyDef& def, std::uint32_t body_id) {
   const bool dynamic = def.type == BodyType::kDynamic;
   box.push_back({{def.center.x, def.center.y}, {def.half_extents.x, def.half_extents.y}});
@@ -109,20 +115,26 @@ std::uint32_t Bodies::swap_remove(std::uint32_t slot) {
   return slot < size() ? id[slot] : kNoSlot;
 }
 
-void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id) {
+void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id,
+                          std::span<const Origin> origin_of_id) {
   const std::uint32_t n = size();
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
   // Kind first, then place along a Z-order curve; every field that tells bodies apart takes part
-  // after that, and creation order (the id) only breaks ties between bodies that are identical
-  // in every respect, where the choice cannot matter.
+  // after that. Two bodies created apart can reach the same state bit for bit (both pushed flush
+  // against one wall, say); what each was created as (its first centre and velocity) then decides,
+  // so that which one takes which slot never follows the creation order. The id (creation order)
+  // breaks only ties between bodies created identical and still so, where the choice cannot
+  // matter.
   const std::vector<std::uint64_t> z = z_order(*this);
   auto key = [&](std::uint32_t i) {
+    const Origin& o = origin_of_id[id[i]];
     return std::tuple(kind_rank(type[i]), z[i], order_key(y(i)), order_key(x(i)), order_key(hy(i)),
                       order_key(hx(i)), order_key(mass[i]), order_key(vx[i]), order_key(vy[i]),
                       order_key(gravity_scale[i]), order_key(restitution[i]),
                       order_key(friction[i]), driven[i], order_key(drive_x[i]),
-                      order_key(drive_y[i]), id[i]);
+                      order_key(drive_y[i]), order_key(o.cy), order_key(o.cx), order_key(o.vx),
+                      order_key(o.vy), id[i]);
   };
   std::sort(order.begin(), order.end(),
             [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });

@@ -35,6 +35,14 @@ inline void add_touch(TouchBits& t, std::uint8_t bits) {
   t = static_cast<TouchBits>(static_cast<std::uint8_t>(t) | bits);
 }
 
+// What a body was created as, beyond what Bodies keeps of it unchanged (size, mass, kind...):
+// its first centre and velocity. Only the canonical sort reads it, to break a tie between two
+// bodies whose states have become identical without ids (creation order) deciding.
+struct Origin {
+  double cx, cy, vx, vy;
+};
+Origin origin_of(const BodyDef& def);
+
 struct Bodies {
   // Centre and half extents together: every overlap test reads all four, and a chain reaches
   // bodies in no fixed order, so one cache line per body beats four.
@@ -81,8 +89,9 @@ struct Bodies {
   void append(const BodyDef& def, std::uint32_t body_id);
   // Moves the last slot into `slot` and drops the last; returns the id now stored at `slot`.
   std::uint32_t swap_remove(std::uint32_t slot);
-  // Sorts slots into solve order; fills slot_of_id (indexed by BodyId value).
-  void canonicalize(std::vector<std::uint32_t>& slot_of_id);
+  // Sorts slots into solve order; fills slot_of_id (indexed by BodyId value). origin_of_id, by
+  // BodyId value too, breaks ties between bodies whose fields are all equal.
+  void canonicalize(std::vector<std::uint32_t>& slot_of_id, std::span<const Origin> origin_of_id);
 
   // Buffers permute() fills and swaps in, kept between calls so that it allocates nothing.
   struct Spare {

@@ -31,6 +31,8 @@ struct World::Impl {
   detail::Bodies bodies;
   std::vector<std::uint32_t> slot_of_id;      // indexed by BodyId value; kNoSlot once destroyed
   std::vector<std::uint32_t> creation_order;  // dynamic slots, oldest first
+  // By BodyId value, destroyed ones included (as slot_of_id): the canonical sort's tie-break.
+  std::vector<detail::Origin> origin_of_id;
   bool dirty = false;
   detail::Broadphase broadphase;
   detail::VelocityResponse response;
@@ -53,7 +55,7 @@ struct World::Impl {
   }
 
   void canonicalize() {
-    bodies.canonicalize(slot_of_id);
+    bodies.canonicalize(slot_of_id, origin_of_id);
     broadphase.configure(bodies);
     layout.reset(bodies.size());
     response.reserve(bodies.size());
@@ -98,6 +100,7 @@ BodyId World::create_body(const BodyDef& def) {
   if (std::string e = validate(def); !e.empty()) throw std::invalid_argument("BodyDef: " + e);
   const auto id = static_cast<std::uint32_t>(impl_->slot_of_id.size());
   if (id == BodyId::kInvalid) throw std::length_error("a world holds at most 2^32 - 1 bodies");
+  impl_->origin_of_id.push_back(detail::origin_of(def));
   impl_->slot_of_id.push_back(impl_->bodies.size());
   impl_->bodies.append(def, id);
   if (def.friction > 0.0) ++impl_->rough_bodies;

@@ -187,6 +187,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadCall{"sweep --scene stack --grid foo=1", "unknown engine"},
         BadCall{"sweep --scene stack --shard 0/3", "--shard 0/3: expected K/N"},
         BadCall{"stress --quick --shard 2", "--shard 2: expected K/N"},
+        BadCall{"sweep --scene stack --shard ''", "--shard is empty: give K/N"},
+        BadCall{"stress --quick --shard ''", "--shard is empty: give K/N"},
+        // --set numbers in the grammar of --steps.
+        BadCall{"run --scene stack --set n=0x10", "\"0x10\" is not a number"},
+        BadCall{"run --scene stack --set n=+2", "\"+2\" is not a number"},
+        BadCall{"run --scene stack --set 'n= 2'", "\" 2\" is not a number"},
+        BadCall{"run --scene stack --set 'n=2 '", "\"2 \" is not a number"},
         BadCall{"replay --scene stack", "--out is required"},
         BadCall{"replay --scene random_pile --set n=100000 --out /tmp/x.html",
                 "more than a page holds"},
@@ -239,6 +246,43 @@ TEST_P(RefusedCall, ExitsWithStatusTwoAndSaysWhy) {
   const Result r = chainbench(GetParam().args);
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find(GetParam().message), std::string::npos) << r.out;
+}
+
+// Large bad inputs are refused as small ones are (a message, exit 2), with what they echo cut
+// to a readable length. (Their time, linear in the input, is measured outside the tests.)
+TEST(Cli, LargeBadInputsAreRefusedWithShortMessages) {
+  const std::string bodies = temp("bad_bodies.json");
+  {
+    std::ofstream f(bodies);
+    f << R"({"name": "bad", "bodies": [)";
+    for (int i = 0; i < 40000; ++i)
+      f << (i ? "," : "") << R"({"center": [0, "x"]})";
+    f << "]}";
+  }
+  Result r = chainbench("run --scene-file " + bodies);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("more"), std::string::npos) << r.out.substr(0, 2000);
+  EXPECT_LT(r.out.size(), 20000u);
+  const std::string keys = temp("many_keys.json");
+  {
+    std::ofstream f(keys);
+    f << R"({"name": "keys", "bodies": [], "x": {)";
+    for (int i = 0; i < 80000; ++i)
+      f << (i ? "," : "") << "\"k" << i << "\": 1";
+    f << R"(, "k7": 2}})";
+  }
+  r = chainbench("run --scene-file " + keys);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("x.k7: is given twice"), std::string::npos) << r.out.substr(0, 2000);
+  std::string engines;
+  for (int i = 1; i < 5000; ++i)
+    engines += "chain:budget=" + std::to_string(i) + ",";
+  engines += "chain:budget=1";
+  r = chainbench("run --scene stack --engines '" + engines + "'");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("bytes)\": chain:budget=1 given twice"), std::string::npos)
+      << r.out.substr(0, 2000);
+  EXPECT_LT(r.out.size(), 1000u);
 }
 
 // The first step is left out of the timing as a warm-up, except when it is the only one: a run
@@ -609,6 +653,26 @@ TEST(Cli, MergeNamesAMalformedPartsFieldAndWhy) {
   nlohmann::ordered_json bad_index = good;
   bad_index["shard"]["index"] = "one";
   refused(bad_index, "shard.index: should be a whole number, got string");
+  // Numbers that do not fit, without narrowing, and a unit listed twice.
+  nlohmann::ordered_json big_count = good;
+  big_count["shard"]["count"] = 4294967298u;
+  refused(big_count, "shard.count: 4294967298 is outside [-2147483647, 2147483647]");
+  nlohmann::ordered_json negative_units = good;
+  negative_units["shard"]["units"] = -1;
+  refused(negative_units, "shard.units: -1 is outside [0, 2147483647]");
+  nlohmann::ordered_json twice = good;
+  twice["shard"]["ran"].push_back(twice["shard"]["ran"][0]);
+  refused(twice, "shard.ran: unit 0 listed twice");
+  // Text no JSON library hands over as a value: refused as read, naming the file.
+  auto refused_text = [&](const std::string& text, const std::string& message) {
+    const std::string path = ::testing::TempDir() + "cb_merge_text.json";
+    std::ofstream(path) << text;
+    const Result r = chainbench("merge " + path);
+    EXPECT_EQ(r.status, 2) << r.out.substr(0, 2000);
+    EXPECT_NE(r.out.find(path + ": " + message), std::string::npos) << r.out.substr(0, 2000);
+  };
+  refused_text("{\"shard\": 1e400}", "holds a number beyond double range");
+  refused_text(std::string(100000, '[') + std::string(100000, ']'), "nested deeper than 64 levels");
 }
 
 TEST(Cli, SweepVaryRunsEachSceneOncePerValueAndNamesItEverywhere) {

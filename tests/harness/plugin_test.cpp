@@ -94,21 +94,49 @@ TEST_P(PluginFault, StopsTheRunWithAMessageNamingThePlugin) {
     const std::string what = e.what();
     EXPECT_NE(what.find("plugin"), std::string::npos) << what;
     EXPECT_NE(what.find(f.message), std::string::npos) << what;
+    // Nothing a plugin hands back reaches a message raw, nor at any length.
+    for (const char c : what)
+      EXPECT_TRUE(c >= 0x20 && c <= 0x7e) << "byte " << int(c) << " in " << what;
+    EXPECT_LT(what.size(), 600u) << what;
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(
     EveryFault, PluginFault,
-    ::testing::Values(Fault{"no_entry", "exports no chainbench_engine_plugin()"},
-                      Fault{"abi", "built for plugin ABI 2, this chainbench loads ABI 1"},
-                      Fault{"size", "its cb_engine is"},
-                      Fault{"null_function", "leaves a required function null"},
-                      Fault{"bad_counter", "counter 0 has no valid name"},
-                      Fault{"create", "could not build scene flight: this plugin builds no worlds"},
-                      Fault{"step", "step 3 failed: the solver diverged"},
-                      Fault{"count", "its world holds 4 bodies, the scene 3"},
-                      Fault{"nan", "returned a non-finite state for body ball"},
-                      Fault{"velocity", "refused to set the velocity of body cart at step 0"}),
+    ::testing::Values(
+        Fault{"no_entry", "exports no chainbench_engine_plugin()"},
+        Fault{"abi", "built for plugin ABI 2, this chainbench loads ABI 1"},
+        Fault{"size", "its cb_engine is"},
+        Fault{"null_function", "leaves a required function null"},
+        Fault{"bad_counter", "counter 0 has no valid name"},
+        Fault{"create", "could not build scene flight: this plugin builds no worlds"},
+        Fault{"step", "step 3 failed: the solver diverged"},
+        Fault{"count", "its world holds 4 bodies, the scene 3"},
+        Fault{"nan", "returned a non-finite state for body ball"},
+        Fault{"velocity", "refused to set the velocity of body cart at step 0"},
+        // What a hostile plugin hands back: each refused by name, what is echoed
+        // cut and printable.
+        Fault{"create_unterminated",
+              "its message has no terminator within 512 bytes, so it is not shown in "
+              "full: \"xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\" "
+              "(cut)"},
+        Fault{"step_unterminated", "step 3 failed: its message has no terminator"},
+        Fault{"name_unterminated",
+              "its name has no terminator within 64 bytes (a name is printable "
+              "ASCII, under 64 bytes): \"AAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAAA"
+              "AAAAAAAAAAAAAAAA\" (cut)"},
+        Fault{"name_escape", "its name holds the non-printable byte 0x1b at offset 0"},
+        Fault{"counter_unterminated",
+              "counter 0 has no valid name (letters a-z, digits and _, under 32): "
+              "its name has no terminator within 32 bytes"},
+        Fault{"counter_duplicate", "counter 1 is named steps_so_far, as an earlier counter is"},
+        Fault{"counter_reserved", "its name is reserved for the chain solver's own counter"},
+        Fault{"counter_nan", "counter steps_so_far is NaN after step 2"},
+        Fault{"step_rc", "step 3 returned 2, which the plugin contract does not"},
+        Fault{"capability", "sets capability bits 256 that this chainbench does"},
+        Fault{"error_escape",
+              "its message holds the non-printable byte 0x1b at offset 3, so it is "
+              "not shown in full: \"bad\" (cut)"}),
     [](const ::testing::TestParamInfo<Fault>& info) { return info.param.name; });
 
 TEST(Plugin, AMissingFileIsNamed) {

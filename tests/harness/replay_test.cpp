@@ -159,6 +159,21 @@ TEST(ReplayPage, IsOneFileWithTheRunsFinalCentresAndTheErrorAtEveryStep) {
   EXPECT_TRUE(seed["findings"][0].contains("at"));
 }
 
+// A name that would open an HTML comment and a script inside the data block (which blanked the
+// page): the embedded JSON holds no <, > or &, and reads back to the same name.
+TEST(ReplayPage, ANameWithMarkupStaysInsideTheDataBlock) {
+  Scene scene = make_scene("push_row", {"n=2", "steps=5"});
+  const std::string name = "a<!--<script>&</script>b";
+  scene.bodies[0].name = name;
+  const Replayed r = replay(scene, {"chain"});
+  const std::string open = "<script type=\"application/json\" id=\"replay-data\">";
+  const std::size_t from = r.page.find(open) + open.size();
+  const std::string block = r.page.substr(from, r.page.find("</script>", from) - from);
+  for (const char c : {'<', '>', '&'})
+    EXPECT_EQ(block.find(c), std::string::npos) << c;
+  EXPECT_NE(page_data(r.page).dump().find(name), std::string::npos);
+}
+
 TEST(ReplayPage, MarksTheEnginesEventsWhereAndWhen) {
   const Scene scene = make_scene("static_squeeze", {});
   const Replayed r = replay(scene, {"chain"});

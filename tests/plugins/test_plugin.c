@@ -25,6 +25,18 @@
 #define FAULT_ABORT 12        /* aborts (SIGABRT) at step 10 */
 #define FAULT_HANG 13         /* never returns from step 10 */
 #define FAULT_EXIT 14         /* calls exit(0) at step 10, as a plugin that quits might */
+/* Hostile returns: what a plugin hands back that chainbench must not trust. */
+#define FAULT_CREATE_UNTERMINATED 15 /* fills the whole error buffer, no terminator */
+#define FAULT_STEP_UNTERMINATED 16   /* the same at step 3 */
+#define FAULT_NAME_UNTERMINATED 17   /* a name with no terminator within 4 KiB */
+#define FAULT_NAME_ESCAPE 18         /* a name that clears the terminal and prints a line */
+#define FAULT_COUNTER_UNTERMINATED 19
+#define FAULT_COUNTER_DUPLICATE 20 /* two counters of one name */
+#define FAULT_COUNTER_RESERVED 21  /* a counter named budget_hits */
+#define FAULT_COUNTER_NAN 22       /* its counter turns NaN at step 2 */
+#define FAULT_STEP_RC 23           /* step 3 returns 2 */
+#define FAULT_CAPABILITY 24        /* an unknown capability bit */
+#define FAULT_ERROR_ESCAPE 25      /* refuses every world with terminal escapes in the message */
 
 #ifndef TEST_PLUGIN_FAULT
 #define TEST_PLUGIN_FAULT FAULT_NONE
@@ -47,6 +59,14 @@ static cb_world* create(const cb_world_desc* desc, char* error, size_t error_siz
   cb_world* w;
   if (TEST_PLUGIN_FAULT == FAULT_CREATE) {
     write_error(error, error_size, "this plugin builds no worlds");
+    return NULL;
+  }
+  if (TEST_PLUGIN_FAULT == FAULT_CREATE_UNTERMINATED) {
+    memset(error, 'x', error_size);
+    return NULL;
+  }
+  if (TEST_PLUGIN_FAULT == FAULT_ERROR_ESCAPE) {
+    write_error(error, error_size, "bad\033[2J\nchainbench: all engines ok");
     return NULL;
   }
   for (i = 0; i < desc->setting_count; ++i) {
@@ -84,6 +104,11 @@ static int step(cb_world* w, char* error, size_t error_size) {
     write_error(error, error_size, "the solver diverged");
     return -1;
   }
+  if (TEST_PLUGIN_FAULT == FAULT_STEP_UNTERMINATED && w->steps == 3) {
+    memset(error, 'y', error_size);
+    return -1;
+  }
+  if (TEST_PLUGIN_FAULT == FAULT_STEP_RC && w->steps == 3) return 2;
   if (TEST_PLUGIN_FAULT == FAULT_CRASH && w->steps == 2) raise(SIGSEGV);
   if (TEST_PLUGIN_FAULT == FAULT_ABORT && w->steps == 10) abort();
   if (TEST_PLUGIN_FAULT == FAULT_EXIT && w->steps == 10) exit(0);
@@ -127,6 +152,8 @@ static uint32_t read_state(const cb_world* w, double* positions, double* velocit
 
 static void read_counters(const cb_world* w, double* values) {
   values[0] = (double)w->steps;
+  if (TEST_PLUGIN_FAULT == FAULT_COUNTER_NAN && w->steps >= 2) values[0] = NAN;
+  if (TEST_PLUGIN_FAULT == FAULT_COUNTER_DUPLICATE) values[1] = 1.0;
 }
 
 static void destroy(cb_world* w) {
@@ -135,18 +162,45 @@ static void destroy(cb_world* w) {
   free(w);
 }
 
+/* 4 KiB without a terminator, for the unterminated names: longer than any bound chainbench
+ * reads within, so a bounded read stays inside it. */
+#define LONG4 'A', 'A', 'A', 'A'
+#define LONG64                                                                               \
+  LONG4, LONG4, LONG4, LONG4, LONG4, LONG4, LONG4, LONG4, LONG4, LONG4, LONG4, LONG4, LONG4, \
+      LONG4, LONG4, LONG4
+#define LONG1K                                                                                    \
+  LONG64, LONG64, LONG64, LONG64, LONG64, LONG64, LONG64, LONG64, LONG64, LONG64, LONG64, LONG64, \
+      LONG64, LONG64, LONG64, LONG64
+#if TEST_PLUGIN_FAULT == FAULT_NAME_UNTERMINATED || TEST_PLUGIN_FAULT == FAULT_COUNTER_UNTERMINATED
+static const char unterminated[4096] = {LONG1K, LONG1K, LONG1K, LONG1K};
+#endif
+
 #if TEST_PLUGIN_FAULT == FAULT_BAD_COUNTER
 static const char* const counter_names[] = {"steps so far"};
+#elif TEST_PLUGIN_FAULT == FAULT_COUNTER_UNTERMINATED
+static const char* const counter_names[] = {unterminated};
+#elif TEST_PLUGIN_FAULT == FAULT_COUNTER_DUPLICATE
+static const char* const counter_names[] = {"steps_so_far", "steps_so_far"};
+#elif TEST_PLUGIN_FAULT == FAULT_COUNTER_RESERVED
+static const char* const counter_names[] = {"budget_hits"};
 #else
 static const char* const counter_names[] = {"steps_so_far"};
+#endif
+
+#if TEST_PLUGIN_FAULT == FAULT_NAME_UNTERMINATED
+#define PLUGIN_NAME unterminated
+#elif TEST_PLUGIN_FAULT == FAULT_NAME_ESCAPE
+#define PLUGIN_NAME "\033[2J\033[Hchainbench: all engines ok\n"
+#else
+#define PLUGIN_NAME "ballistic"
 #endif
 
 static const cb_engine engine = {
     TEST_PLUGIN_FAULT == FAULT_ABI ? CHAINBENCH_PLUGIN_ABI + 1 : CHAINBENCH_PLUGIN_ABI,
     TEST_PLUGIN_FAULT == FAULT_SIZE ? sizeof(cb_engine) - 8 : sizeof(cb_engine),
-    "ballistic",
-    CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES,
-    1,
+    PLUGIN_NAME,
+    CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES | (TEST_PLUGIN_FAULT == FAULT_CAPABILITY ? 256u : 0u),
+    sizeof counter_names / sizeof counter_names[0],
     counter_names,
     create,
     set_velocity,

@@ -32,7 +32,8 @@ Bodies random_bodies(std::uint32_t seed, int n, double spread, double min_half, 
   ground.half_extents = {spread * 2.0, 1.0};
   b.append(ground, static_cast<std::uint32_t>(n));
   std::vector<std::uint32_t> slot_of_id(b.size());
-  b.canonicalize(slot_of_id);
+  const std::vector<chain::detail::Origin> origins(b.size(), chain::detail::Origin{});
+  b.canonicalize(slot_of_id, origins);
   return b;
 }
 
@@ -94,7 +95,8 @@ TEST(Broadphase, QueryAfterAPushFindsBodiesNearTheNewPlace) {
     b.append(d, static_cast<std::uint32_t>(i));
   }
   std::vector<std::uint32_t> slot_of_id(b.size());
-  b.canonicalize(slot_of_id);
+  const std::vector<chain::detail::Origin> origins(b.size(), chain::detail::Origin{});
+  b.canonicalize(slot_of_id, origins);
   Broadphase bp;
   bp.configure(b);
   bp.build(b);

@@ -227,5 +227,70 @@ TEST(Determinism, SqueezeOutcomeDependsOnCreationOrderOnlyInSeed2014) {
   EXPECT_NEAR(final_y(Variant::kModern, true), 0.4, 1e-12);  // midway between 0 and 0.8
 }
 
+// Two bodies created apart (bodies 0 and 3 below: same size and mass, different centres and
+// velocities) are pushed into one state, bit for bit; destroying a third body re-sorts the world.
+// The tie is broken by what each was created as, never by creation order, so each body keeps its
+// own path whichever order the world was built in. (The fuzzer's reproducer,
+// tests/fuzz/corpus/world/creation_order_tie_*.bin, decoded.)
+TEST(Determinism, BodiesCreatedApartInOneStateKeepTheirPathsAcrossADestroy) {
+  struct Row {
+    BodyType type;
+    double x, y, hx, hy, vx, vy, mass, gravity_scale, restitution;
+  };
+  constexpr BodyType D = BodyType::kDynamic, S = BodyType::kStatic;
+  const std::vector<Row> rows = {
+      {D, -6.875, -2.375, 1.6875, 1.6875, -0.75, -4.75, 0.001, 0.0, 0.0},
+      {D, -2.375, -2.375, 1.6875, 1.6875, -4.75, -4.75, 0.001, 0.0, 1.0},
+      {S, -2.375, -2.375, 1.6875, 1.6875, 0, 0, 1, 1, 0},
+      {D, -2.375, -2.375, 1.6875, 1.6875, -4.75, -4.75, 0.001, 0.0, 0.0},
+      {D, -2.375, -2.375, 1.6875, 2.0, 15.875, 15.875, 100.0, 1.0, 0.5},  // driven to (-8, -8)
+      {S, 7.9375, 0.3125, 0.125, 0.0625, 0, 0, 1, 1, 0},
+      {S, -6.4375, -8.0, 0.0625, 0.0625, 0, 0, 1, 1, 0},
+      {S, -8.0, -8.0, 0.0625, 0.625, 0, 0, 1, 1, 0},
+      {S, 5.0, -2.4375, 1.3125, 0.0625, 0, 0, 1, 1, 0},
+      {S, -2.0, -8.0, 0.0625, 1.8125, 0, 0, 1, 1, 0},
+      {S, -8.0, -2.0, 0.0625, 0.0625, 0, 0, 1, 1, 0},
+      {S, -7.25, 3.5, 0.5, 0.8125, 0, 0, 1, 1, 0},
+      {D, -6.375, 5.25, 1.875, 0.625, -8.875, 9.25, 1.0, 1.0, 1.0},
+      {S, 0.6875, 2.125, 0.0625, 0.0625, 0, 0, 1, 1, 0},
+      {S, -8.0, -8.0, 0.0625, 0.875, 0, 0, 1, 1, 0},
+      {S, -8.0, -7.6875, 1.5625, 0.625, 0, 0, 1, 1, 0},
+      {S, 0.1875, 5.25, 0.5625, 0.1875, 0, 0, 1, 1, 0},
+      {S, -8.0, -8.0, 0.0625, 0.0625, 0, 0, 1, 1, 0},
+      {S, -8.0, -8.0, 0.875, 1.5625, 0, 0, 1, 1, 0},
+  };
+  WorldDef def = world_def(Variant::kModern, VelocityRule::kZero, {-8.90625, 10.9375});
+  def.max_passes = 2;
+  def.budget_per_body = 111;
+  auto final_positions = [&](bool reversed) {
+    World w(def);
+    std::vector<BodyId> ids(rows.size());
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const std::size_t i = reversed ? rows.size() - 1 - k : k;
+      const Row& r = rows[i];
+      BodyDef b;
+      b.type = r.type;
+      b.center = {r.x, r.y};
+      b.half_extents = {r.hx, r.hy};
+      if (r.type != S) b.velocity = {r.vx, r.vy};
+      b.mass = r.mass;
+      b.gravity_scale = r.gravity_scale;
+      b.restitution = r.restitution;
+      ids[i] = w.create_body(b);
+      if (i == 4) w.set_drive(ids[i], {-8.0, -8.0});
+    }
+    for (int step = 0; step < 26; ++step) {
+      if (step == 18) w.destroy_body(ids[2]);
+      w.step(1.0 / 240.0);
+    }
+    std::vector<Vec2> out;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (i != 2) out.push_back(w.position(ids[i]));
+    }
+    return out;
+  };
+  EXPECT_TRUE(same_bits(final_positions(false), final_positions(true)));
+}
+
 }  // namespace
 }  // namespace chain::testing

@@ -73,29 +73,35 @@ typedef struct cb_world_desc {
 typedef struct cb_world cb_world;
 
 typedef struct cb_engine {
-  uint32_t abi;                     /* CHAINBENCH_PLUGIN_ABI */
-  uint32_t size;                    /* sizeof(cb_engine) */
-  const char* name;                 /* shown in messages, e.g. "relaxation" */
-  uint32_t capabilities;            /* CB_CAN_* */
-  uint32_t counter_count;           /* named figures read_counters reports per step (<= 16) */
-  const char* const* counter_names; /* counter_count names, [a-z0-9_]; reported as per-step means */
+  uint32_t abi;  /* CHAINBENCH_PLUGIN_ABI */
+  uint32_t size; /* sizeof(cb_engine) */
+  /* Shown in messages, e.g. "relaxation": printable ASCII, terminated within 64 bytes. */
+  const char* name;
+  uint32_t capabilities;  /* CB_CAN_* only: an unknown bit is refused */
+  uint32_t counter_count; /* named figures read_counters reports per step (<= 16) */
+  /* counter_count distinct names, [a-z0-9_], terminated within 32 bytes, none of budget_hits and
+   * crush_events (kept for the chain solver's counters); reported as per-step means. */
+  const char* const* counter_names;
 
   /* A world built from desc, or NULL with a message written to error (at most error_size bytes,
-   * terminated). An unknown or bad setting is such an error. */
+   * terminated; printable ASCII, or only its printable start is shown). An unknown or bad setting
+   * is such an error. */
   cb_world* (*create)(const cb_world_desc* desc, char* error, size_t error_size);
   /* Sets the velocity of body along the axes set in axes (CB_AXIS_X | CB_AXIS_Y), leaving the
    * other axis as it is: chainbench drives bodies this way at the start of a step. 0, or nonzero
    * for a bad body or axes. */
   int (*set_velocity)(cb_world* world, uint32_t body, double vx, double vy, uint32_t axes);
   /* Advances the world by desc->dt. Returns 0; 1 when the step was cut short to bound its work
-   * (chainbench then judges the run `budget`); a negative value with a message on error. */
+   * (chainbench then judges the run `budget`); a negative value with a message on error (as for
+   * create). Any other value is refused. */
   int (*step)(cb_world* world, char* error, size_t error_size);
   /* Writes the state of the first `capacity` bodies: positions and velocities as x, y pairs,
    * angles in radians (any of the three may be NULL: skip it). Returns how many bodies the world
    * holds, which must equal body_count. */
   uint32_t (*read_state)(const cb_world* world, double* positions, double* velocities,
                          double* angles, uint32_t capacity);
-  /* Writes counter_count values about the last step; may be NULL when counter_count is 0. */
+  /* Writes counter_count finite values about the last step (NaN or infinity is refused); may be
+   * NULL when counter_count is 0. */
   void (*read_counters)(const cb_world* world, double* values);
   void (*destroy)(cb_world* world);
 } cb_engine;

@@ -188,8 +188,9 @@ class World {
   // Advances by dt seconds. Throws std::invalid_argument unless dt is finite and > 0; any dt is
   // valid, and fast bodies are swept whatever it is (modern). Throws std::length_error for a
   // modern world of 2^30 bodies or more (its near lists keep 32-bit box offsets).
-  // Deterministic: the same bodies, in any creation order, give the same bits (modern variant;
-  // two identical bodies in the same place may trade places, as nothing tells them apart).
+  // Deterministic: the same bodies, in any creation order, give the same bits (modern variant).
+  // Bodies that reach one state are told apart by what each was created as (its BodyDef), so
+  // only two bodies created identical (same BodyDef, same drive) and still so may trade places.
   // Allocates nothing once the world's buffers have grown to their working size.
   void step(double dt);
 

@@ -210,6 +210,10 @@ EngineDef register_box2d3() {
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
     return std::make_unique<Box2d3Engine>(spec, scene);
   };
+  // v3 clamps every body's speed in each sub-step (docs/box2d3.md §5.2).
+  e.limits = {{"moves no body faster than this (maximumLinearSpeed, the key max_speed)", 400.0,
+               "m/s",
+               [](const EngineSpec& spec, const Scene&) { return spec.get_number("max_speed"); }}};
   return e;
 }
 

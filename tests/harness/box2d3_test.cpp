@@ -107,6 +107,15 @@ TEST(Box2d3, SameBitsOnEveryThreadCount) {
 
 // Each item of a parallel-for runs once, in chunks no smaller than asked, on workers below the
 // pool's count; tasks in flight together all finish.
+TEST(Box2d3, ListsItsSpeedCapAsTheKeySetsIt) {
+  const EngineDef& def = engine_def("box2d3");
+  ASSERT_EQ(def.limits.size(), 1u);
+  EXPECT_EQ(def.limits[0].unit, "m/s");
+  const Scene scene = make_scene("stack", {"n=2"});
+  EXPECT_EQ(def.limits[0].speed(parse_engine_spec("box2d3"), scene), 400.0);
+  EXPECT_EQ(def.limits[0].speed(parse_engine_spec("box2d3:max_speed=50"), scene), 50.0);
+}
+
 TEST(Box2d3TaskPool, RunsEveryItemOnceOnItsWorkers) {
   struct Items {
     std::vector<std::atomic<int>> runs;

@@ -111,6 +111,22 @@ ordered_json expectation_json(const Scene& s, const Expectation& e) {
       break;
     case Expectation::Kind::kNoOverlap:
       j["no_overlap"] = e.depth;
+      if (!e.bodies.empty()) {
+        ordered_json names = ordered_json::array();
+        for (const std::size_t b : e.bodies)
+          names.push_back(s.bodies[b].name);
+        j["bodies"] = std::move(names);
+      }
+      break;
+    case Expectation::Kind::kAbove:
+    case Expectation::Kind::kBelow:
+    case Expectation::Kind::kOn:
+      j[to_string(e.kind)] = s.bodies[e.other].name;
+      j["tolerance"] = e.tolerance;
+      break;
+    case Expectation::Kind::kSqueezed:
+      j["squeezed"] = true;
+      j["tolerance"] = e.tolerance;
       break;
   }
   if (e.windowed()) {
@@ -285,7 +301,7 @@ ordered_json run_json(const RunReport& r) {
     e["gate"] = is_gate(run.spec);  // the setting under test (registry.h)
     if (const std::string& caveat = engine_def(run.spec.engine).caveat; !caveat.empty())
       e["caveat"] = caveat;
-    if (run.failure) {              // its child process crashed or hung: nothing was measured
+    if (run.failure) {  // its child process crashed or hung: nothing was measured
       e["failure"] = *run.failure;
       e["verdict"] = verdict_json(*run.verdict);
       return e;

@@ -26,6 +26,10 @@ b2Vec2 vec(Vec2d v) {
 
 }  // namespace
 
+double Box2dWorld::max_translation() {
+  return static_cast<double>(b2_maxTranslation);
+}
+
 double Box2dWorld::skin_shrink() {
   return b2_polygonRadius - 0.5 * b2_linearSlop;
 }

@@ -37,6 +37,8 @@ class Box2dWorld {
  public:
   // b2_polygonRadius - b2_linearSlop / 2: what compensation takes off each side (7.5 mm).
   static double skin_shrink();
+  // b2_maxTranslation: the farthest Box2D moves a body in one world step, m (2 in 2.4).
+  static double max_translation();
 
   Box2dWorld(const Scene& scene, const Box2dSettings& settings);
   ~Box2dWorld();

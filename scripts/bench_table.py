@@ -19,7 +19,9 @@ the subject's final-position error against the reference and which engines meet 
 The tables, in order: the summary (the subject against every engine, sleeping on and off, and
 every row where it loses), the headline (the moving scenes, where every engine works each step), the
 results (time per step of every engine on every row), the work and memory behind them (contacts
-per step and heap held per body), the subject's scaling per family, and the harness' cost.
+per step and heap held per body), the subject's scaling per family, the harness' cost, and an
+adapter's cost: an engine through chainbench beside the same scene built by hand in its own API
+(plain/FAMILY/ENGINE/SIZE rows, such as the box2d3 pyramid's).
 """
 import argparse
 import json
@@ -32,6 +34,10 @@ BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
 # An accuracy run takes the scene's own steps unless the engines' timed steps say that would take
 # longer than this; then fewer steps (the row says how many).
 ACCURACY_BUDGET_S = 20.0
+
+
+# Benchmark name prefixes that are not a family's engine rows: the harness' cost and plain worlds.
+EXTRA = ("harness", "plain")
 
 
 def load(path):
@@ -48,6 +54,8 @@ def load(path):
         if len(parts) < 3 or parts[-1] in ("BigO", "RMS") or "_BigO" in b["name"] or "_RMS" in b["name"]:
             continue
         size = next((p for p in parts[2:] if p.isdigit()), "")
+        if parts[0] == "plain":  # plain/FAMILY/ENGINE/SIZE: keyed ("plain", FAMILY, "ENGINE/SIZE")
+            size = f"{parts[2]}/{size}"
         if parts[0] == "harness":  # harness/FAMILY/SIZE/metrics:K: one entry per K
             flag = next((p for p in parts if p.startswith("metrics:")), None)
             if flag is None:
@@ -169,9 +177,10 @@ def answer_error(accuracy, group, engine):
 def ordered(runs):
     """Families in the order the benchmark ran them, engines likewise, and the (family, size)
     rows in family order, then by size."""
-    order = list(dict.fromkeys(family for family, engine, size in runs if family != "harness"))
-    engines = list(dict.fromkeys(engine for family, engine, size in runs if family != "harness"))
-    groups = sorted({(family, size) for family, engine, size in runs if family != "harness"},
+    timed = [(family, engine, size) for family, engine, size in runs if family not in EXTRA]
+    order = list(dict.fromkeys(family for family, engine, size in timed))
+    engines = list(dict.fromkeys(engine for family, engine, size in timed))
+    groups = sorted({(family, size) for family, engine, size in timed},
                     key=lambda g: (order.index(g[0]), int(g[1] or 0)))
     return engines, groups
 
@@ -224,6 +233,11 @@ def caveat_marks(context, engines):
     return marks, [f"{mark} {text}." for text, mark in notes.items()]
 
 
+def times_faster(v):
+    """"0.004x", "0.5x", "25.0x": two significant digits below 0.1, else one decimal."""
+    return f"{v:.2g}x" if v < 0.1 else f"{v:.1f}x"
+
+
 def times(b):
     return f"{fmt_ms(b[0])} against {fmt_ms(b[1])} ms"
 
@@ -249,10 +263,10 @@ def summary(context, runs, subject):
                 continue
             (low, lf, ls), (high, hf, hs) = r[0], r[-1]
             mid = r[len(r) // 2][0] if len(r) % 2 else (r[len(r) // 2 - 1][0] + r[len(r) // 2][0]) / 2
-            parts.append(f"`{e}`{marks.get(e, '')} {low:.1f}x ({row_label(recipes, lf, ls)}) to "
-                         f"{high:.1f}x ({row_label(recipes, hf, hs)}), median {mid:.1f}x"
-                         if len(r) > 1 else
-                         f"`{e}`{marks.get(e, '')} {low:.1f}x ({row_label(recipes, lf, ls)})")
+            parts.append(f"`{e}`{marks.get(e, '')} {times_faster(low)} ({row_label(recipes, lf, ls)}) "
+                         f"to {times_faster(high)} ({row_label(recipes, hf, hs)}), median "
+                         f"{times_faster(mid)}" if len(r) > 1 else
+                         f"`{e}`{marks.get(e, '')} {times_faster(low)} ({row_label(recipes, lf, ls)})")
         return "; ".join(parts)
 
     out = [f"**`{subject}` against every engine, with sleeping off and on.** How many times faster "
@@ -396,6 +410,28 @@ def harness_table(context, runs, subject):
             "|---|---:|---:|---:|---:|---:|"] + out
 
 
+def plain_table(context, runs):
+    """Per plain/FAMILY/ENGINE/SIZE row (a world built by hand in the engine's own API): the
+    engine's time through its adapter beside it, and their ratio."""
+    recipes = family_recipes(context)
+    out = []
+    for (f, family, size), plain in runs.items():
+        if f != "plain" or "/" not in size:
+            continue
+        engine, size = size.split("/", 1)
+        adapted = runs.get((family, engine, size))
+        if not adapted:
+            continue
+        out.append(f"| {row_label(recipes, family, size)} | `{engine}` | {fmt_ms(ms(adapted))} | "
+                   f"{fmt_ms(ms(plain))} | {ms(adapted) / ms(plain):.2f}x |")
+    if not out:
+        return []
+    return ["", "Adapter cost: the engine through chainbench's adapter, and the same scene as a world "
+            "built by hand in the engine's own API at the same settings (`plain/FAMILY/ENGINE/SIZE`):",
+            "", "| scene | engine | adapter ms/step | plain world ms/step | ratio |",
+            "|---|---|---:|---:|---:|"] + out
+
+
 def tables(context, runs, accuracy=None):
     """Every table, in the order the module docstring gives."""
     accuracy = accuracy or {}
@@ -408,6 +444,7 @@ def tables(context, runs, accuracy=None):
     out += work_table(context, runs)
     out += scaling_tables(context, runs, subject)
     out += harness_table(context, runs, subject)
+    out += plain_table(context, runs)
     out += ["", f"Measured {context.get('date', '?')} on {context.get('num_cpus', '?')} CPUs at "
             f"{context.get('mhz_per_cpu', '?')} MHz, one benchmark at a time; ratios are from the same run."]
     return "\n".join(out)

@@ -15,6 +15,9 @@ def fmt(value, digits=2):
 
 
 def ratio(value):
+    """"0.004x", "0.5x", "2.5x", "25x": two significant digits below 0.1, one decimal below 10."""
+    if value < 0.1:
+        return f"{value:.2g}x"
     return f"{value:.1f}x" if value < 10 else f"{value:.0f}x"
 
 
@@ -162,7 +165,9 @@ def breaks(stress, labels):
         run = [c for c in cases if c["verdict"] != "skipped"]
         verdicts, groups = {}, {}
         for c in bad:
-            verdicts[c["verdict"]] = verdicts.get(c["verdict"], 0) + 1
+            # A near miss (every failed check within a tenth of its tolerance) is tallied apart.
+            kind = c["verdict"] + (" (near miss)" if c.get("near_miss") else "")
+            verdicts[kind] = verdicts.get(kind, 0) + 1
             groups[c["group"]] = groups.get(c["group"], 0) + 1
         text = f"`{lb}` is ok on {len(run) - len(bad)} of {len(run)}"
         if bad:

@@ -164,13 +164,60 @@ void ExpectationCheck::observe(int k, const BodyState& state, const BodyState* p
 ExpectResult ExpectationCheck::result() const {
   ExpectResult r;
   r.entries = outcomes_;
+  bool all_near = true;
   for (ExpectOutcome& o : r.entries) {
+    const Expectation& e = scene_.expect[o.index];
     if (o.state < 0) o.pass = false;  // the run stopped before the entry's window
-    // Metres only: a rest limit's error is a speed.
-    if (scene_.expect[o.index].kind != Kind::kAtRest)
-      r.max_error = std::max(r.max_error, std::isfinite(o.error) ? o.error : HUGE_VAL);
+    const double error = std::isfinite(o.error) ? o.error : HUGE_VAL;
+    switch (e.kind) {
+      case Kind::kCenter:
+      case Kind::kMoved:
+        o.limit = e.tolerance;
+        o.margin = o.value - e.tolerance;
+        break;
+      case Kind::kBounds:
+        o.limit = 0.0;
+        o.margin = o.pass ? 0.0 : o.error;
+        break;
+      case Kind::kAtRest:
+        o.limit = e.speed;
+        o.margin = o.value - e.speed;
+        break;
+      case Kind::kNoOverlap:
+        o.limit = e.depth;
+        o.margin = o.value - e.depth;
+        break;
+      case Kind::kAbove:
+      case Kind::kBelow:
+      case Kind::kOn:
+      case Kind::kSqueezed:
+        // A failed `on` off the other along x is at least that far beyond.
+        o.limit = e.tolerance;
+        o.margin = o.pass ? o.value - e.tolerance : o.error;
+        break;
+    }
+    if (o.state < 0) o.margin = HUGE_VAL;
+    // Bounds allow nothing: a miss is near against the share of the body's size that is visibly
+    // wrong (5% of its smaller edge, as the default penetration tolerance), 6e-8 m not being 2 m.
+    double scale = o.limit;
+    if (e.kind == Kind::kBounds && o.body) {
+      const Vec2d h = scene_.bodies[*o.body].half_extents;
+      scale = 0.05 * 2.0 * std::min(h.x, h.y);
+    }
+    o.near = !o.pass && scale > 0.0 && o.margin <= 0.1 * scale;
+    if (is_speed(e.kind)) {
+      r.has_speed = true;
+      r.max_speed_error = std::max(r.max_speed_error, error);
+      r.speed_pass = r.speed_pass && o.pass;
+    } else {
+      r.has_position = true;
+      r.max_error = std::max(r.max_error, error);
+      r.position_pass = r.position_pass && o.pass;
+    }
     r.pass = r.pass && o.pass;
+    if (!o.pass) all_near = all_near && o.near;
   }
+  r.near_miss = !r.pass && all_near;
   return r;
 }
 

@@ -30,11 +30,31 @@ struct ExpectOutcome {
   double rms = 0.0;
   std::size_t bodies = 1;
   bool pass = true;
+  // What the entry allows (center, moved: its tolerance; at_rest: its speed; no_overlap: its
+  // depth; bounds: 0), how far the worst state went beyond it (negative while it holds), and
+  // whether a failure is a near miss: beyond it by at most a tenth of it (bounds, which allow
+  // nothing: a tenth of 5% of the body's smaller edge). Units as `value`.
+  double limit = 0.0;
+  double margin = 0.0;
+  bool near = false;
 };
 
+// Whether an entry of this kind is judged in m/s (at_rest) rather than metres.
+inline bool is_speed(Expectation::Kind kind) {
+  return kind == Expectation::Kind::kAtRest;
+}
+
 struct ExpectResult {
-  double max_error = 0.0;  // the largest error of any entry in metres (at_rest entries aside)
+  // The largest error of the entries judged in metres (center, moved, bounds, no_overlap) and of
+  // those judged in m/s (at_rest: the excess over the limit), kept apart so that neither hides
+  // the other; whether each kind passed, and whether the scene has any of it.
+  double max_error = 0.0;        // m
+  double max_speed_error = 0.0;  // m/s
   bool pass = true;
+  bool position_pass = true, speed_pass = true;
+  bool has_position = false, has_speed = false;
+  // Every failed entry is a near miss (ExpectOutcome::near); false when none failed.
+  bool near_miss = false;
   std::vector<ExpectOutcome> entries;  // one per scene.expect entry, in order
 };
 

@@ -111,7 +111,7 @@ Metrics MetricsRecorder::result(const BodyState& last) const {
     m.blow_up_body = blow_up_body_;
     m.blow_up_step = blow_up_step_;
     m.blow_up_speed = blow_up_speed_;
-    m.blow_up_bound = blow_up_ ? bounds_.speed[blow_up_body_] : 0.0;
+    m.blow_up_bound = blow_up_ ? blow_up_bound_ : 0.0;
     for (const std::size_t i : dynamic_) {
       const Vec2d p = last.position[i], p0 = scene_.bodies[i].center;
       const double d = std::hypot(p.x - p0.x, p.y - p0.y);

@@ -178,7 +178,7 @@ class MetricsRecorder {
   bool blow_up_ = false;
   std::size_t blow_up_body_ = 0;
   int blow_up_step_ = 0;
-  double blow_up_speed_ = 0.0;
+  double blow_up_speed_ = 0.0, blow_up_bound_ = 0.0;
   PairOverlap deepest_, worst_;
   double worst_ratio_ = 0.0;
   std::uint64_t body_steps_ = 0;

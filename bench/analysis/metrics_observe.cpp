@@ -303,12 +303,15 @@ void MetricsRecorder::update_slack(const BodyState& before, const BodyState& aft
   // the allowance, so that over any stretch of steps a body travels at most the bound times
   // its duration plus the allowance. A step may also push the body out of the overlap it was
   // in, and round it to single precision, without counting against it.
-  const double bound = bounds_.speed[i];
+  // Below the floor's top a body has gone through it (tunnelled): the floor's bound no longer
+  // holds for it, a fall lasting the run does.
+  const double bound = bounds_.floor.below(p) ? bounds_.fallen[i] : bounds_.speed[i];
   if (!std::isfinite(bound)) return;
   const double free = bound * dt_ + depth_[i] + float_resolution(p);
   slack_[i] = std::min(bounds_.allowance[i], slack_[i] + free - moved);
   if (slack_[i] < 0.0 && !blow_up_) {
     blow_up_ = true, blow_up_body_ = i, blow_up_step_ = step, blow_up_speed_ = speed;
+    blow_up_bound_ = bound;
   }
 }
 

@@ -20,6 +20,64 @@ std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
 
 }  // namespace
 
+Floor find_floor(const Scene& scene, double sideways, double lift, double sunk) {
+  const std::size_t n = scene.bodies.size();
+  const double inf = std::numeric_limits<double>::infinity();
+  Floor none;
+  none.height.assign(n, inf);
+  // Gravity along one axis, boxes that keep their orientation: the only scenes whose floor is a
+  // face all the way across.
+  const bool along_x = scene.gravity.y == 0.0, along_y = scene.gravity.x == 0.0;
+  if (scene.rotation || along_x == along_y) return none;
+  const int axis = along_y ? 1 : 0;  // the axis gravity is along
+  const double down = (along_y ? scene.gravity.y : scene.gravity.x) < 0.0 ? -1.0 : 1.0;
+  auto depth = [&](Vec2d p) { return down * (axis == 1 ? p.y : p.x); };  // grows downwards
+  auto across = [&](Vec2d p) { return axis == 1 ? p.x : p.y; };
+  auto half_depth = [&](const SceneBody& b) {
+    return axis == 1 ? b.half_extents.y : b.half_extents.x;
+  };
+  auto half_across = [&](const SceneBody& b) {
+    return axis == 1 ? b.half_extents.x : b.half_extents.y;
+  };
+  // The dynamic bodies' extent: the deepest bottom, and how far across they reach.
+  double bottom = -inf, lo = inf, hi = -inf;
+  bool any = false;
+  for (const SceneBody& b : scene.bodies) {
+    if (b.kind != BodyKind::kDynamic) continue;
+    if (b.gravity_scale < 0.0) return none;  // falls upwards: no floor catches it
+    any = true;
+    bottom = std::max(bottom, depth(b.center) + half_depth(b));
+    lo = std::min(lo, across(b.center) - half_across(b));
+    hi = std::max(hi, across(b.center) + half_across(b));
+  }
+  if (!any) return none;
+  // The highest floor: a static box under every dynamic one that reaches past them on both sides
+  // by more than any of them can travel sideways in the run.
+  double ground = inf;
+  const double rounding = 1e-9 * (1.0 + std::abs(bottom));
+  for (const SceneBody& f : scene.bodies) {
+    if (f.kind != BodyKind::kStatic) continue;
+    const double top = depth(f.center) - half_depth(f);
+    if (top < bottom - sunk - rounding || top >= ground) continue;
+    if (across(f.center) - half_across(f) > lo - sideways ||
+        across(f.center) + half_across(f) < hi + sideways)
+      continue;
+    ground = top;
+  }
+  if (!std::isfinite(ground)) return none;
+  Floor f;
+  f.axis = axis;
+  f.down = down;
+  f.top = ground;
+  f.height.assign(n, inf);
+  for (std::size_t i = 0; i < n; ++i) {
+    const SceneBody& b = scene.bodies[i];
+    if (b.kind != BodyKind::kDynamic) continue;
+    f.height[i] = std::max(0.0, ground - (depth(b.center) + half_depth(b))) + sunk + lift;
+  }
+  return f;
+}
+
 MotionBounds motion_bounds(const Scene& scene) {
   const std::size_t n = scene.bodies.size();
   const double inf = std::numeric_limits<double>::infinity();
@@ -31,26 +89,29 @@ MotionBounds motion_bounds(const Scene& scene) {
   m.allowance.assign(n, 0.0);
   m.initial_depth.assign(n, 0.0);
 
-  double fastest = 0.0, drive = 0.0, restitution = scene.restitution, energy = 0.0;
-  double largest = 0.0, smallest = inf, fall = 0.0;
+  double fastest = 0.0, drive = 0.0, lift = 0.0, restitution = scene.restitution;
+  double largest = 0.0, smallest = inf;
   bool pumped = !scene.drivers.empty();  // drives and moving kinematic bodies do work
+  // Speeds against gravity: what can carry a body higher than it starts.
+  const Vec2d up = g > 0.0 ? Vec2d{-scene.gravity.x / g, -scene.gravity.y / g} : Vec2d{};
+  auto rise = [&](Vec2d v) { return std::max(0.0, v.x * up.x + v.y * up.y); };
   for (const SceneBody& b : scene.bodies) {
     const double speed = std::hypot(b.velocity.x, b.velocity.y);
     restitution = std::max(restitution, scene.restitution_of(b));
     if (b.kind == BodyKind::kKinematic) {
       drive = std::max(drive, speed);
+      lift = std::max(lift, rise(b.velocity));
       pumped = pumped || speed > 0.0;
     }
     if (b.kind != BodyKind::kDynamic) continue;
-    const double own = speed + g * std::abs(b.gravity_scale) * duration;
     fastest = std::max(fastest, speed);
-    fall = std::max(fall, g * std::abs(b.gravity_scale) * duration);
-    energy += 0.5 * b.mass * own * own;
     largest = std::max(largest, std::hypot(b.half_extents.x, b.half_extents.y));
     smallest = std::min({smallest, 2.0 * b.half_extents.x, 2.0 * b.half_extents.y});
   }
-  for (const Driver& d : scene.drivers)
+  for (const Driver& d : scene.drivers) {
     drive = std::max(drive, std::hypot(d.velocity.x, d.velocity.y));
+    lift = std::max(lift, rise(d.velocity));
+  }
   if (restitution > 0.0 && pumped) {
     m.unbounded = "bounces off driven or moving kinematic bodies can gain energy without limit";
   }
@@ -126,7 +187,33 @@ MotionBounds motion_bounds(const Scene& scene) {
         reach, [&](std::size_t k) { pushed[dynamic[k]] = std::max(pushed[dynamic[k]], s); });
   }
 
-  const double bounded_speed = fastest + fall + drive;  // no bounce: the fastest in a collision
+  // What gravity can give each body: the fall from its height above the floor when the scene
+  // has one it cannot leave (find_floor), else a fall lasting the whole run. With bounces a body
+  // may be thrown sideways faster than anything moves: no floor is wide enough to be sure of.
+  double pushes = 0.0;
+  for (const auto& overlap : m.initial_overlaps)
+    pushes += overlap.second;
+  const double sideways =
+      restitution > 0.0 ? inf : (fastest + drive) * duration + pushes + 2.0 * largest;
+  m.floor = find_floor(scene, sideways, lift * duration, pushes);
+  double floor_fall = 0.0, run_fall = 0.0, energy = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const SceneBody& b = scene.bodies[i];
+    if (b.kind != BodyKind::kDynamic) continue;
+    const double pull = g * std::abs(b.gravity_scale);
+    double fall = pull * duration;
+    run_fall = std::max(run_fall, fall);
+    if (std::isfinite(m.floor.height[i]))
+      fall = std::min(fall, std::sqrt(2.0 * pull * m.floor.height[i]));
+    floor_fall = std::max(floor_fall, fall);
+    const double own = std::hypot(b.velocity.x, b.velocity.y) + fall;
+    energy += 0.5 * b.mass * own * own;
+  }
+
+  // No bounce: nothing leaves a collision faster than the fastest thing in it.
+  const double bounded_speed = fastest + floor_fall + drive;
+  const double fallen_speed = 1.25 * (fastest + run_fall + drive) + 1.0;
+  m.fallen.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const SceneBody& b = scene.bodies[i];
     if (b.kind != BodyKind::kDynamic) continue;
@@ -134,9 +221,12 @@ MotionBounds motion_bounds(const Scene& scene) {
     if (restitution > 0.0)
       v = m.unbounded.empty() ? std::max(v, std::sqrt(2.0 * energy / b.mass)) : inf;
     m.speed[i] = 1.25 * v + 1.0;
+    m.fallen[i] = std::max(m.speed[i], fallen_speed);
     if (std::isfinite(m.speed[i])) m.largest_speed = std::max(m.largest_speed, m.speed[i]);
     m.allowance[i] = pushed[i] + 0.05 * smallest;
-    m.reach[i] = m.speed[i] * duration + m.allowance[i] + 2.0 * largest;
+    // Where a body may end: as far as it may go once through the floor (a tunnelling, which is
+    // judged as such rather than as an escape).
+    m.reach[i] = m.fallen[i] * duration + m.allowance[i] + 2.0 * largest;
   }
   return m;
 }

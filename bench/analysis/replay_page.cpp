@@ -127,7 +127,8 @@ ordered_json engine_json(const Scene& s, const EngineRun& run, const ReplayTrack
     xy.push_back(json_number(p.y));
   }
   e["final"] = {{"bodies", std::move(bodies)}, {"xy", std::move(xy)}};
-  ordered_json series = {{"efd", numbers(t.efd)}, {"penetration", numbers(t.penetration)}};
+  ordered_json series = {
+      {"efd", numbers(t.efd)}, {"penetration", numbers(t.penetration)}, {"ms", numbers(t.ms)}};
   if (!t.error_max.empty()) {
     series["error_max"] = numbers(t.error_max);
     series["error_rms"] = numbers(t.error_rms);

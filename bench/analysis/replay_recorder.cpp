@@ -33,6 +33,7 @@ void ReplayRecorder::begin(const EngineSpec& spec, std::span<const CounterDef> c
   ReplayTrack t(spec, PositionStream(centres(scene_), quantum_));
   t.efd = {0.0};
   t.penetration = {initial_depth_};
+  t.ms = {std::numeric_limits<double>::quiet_NaN()};
   if (reference_) t.error_max = t.error_rms = {0.0};
   counted_.clear();
   for (std::size_t c = 0; c < counters.size(); ++c) {
@@ -57,6 +58,7 @@ void ReplayRecorder::observe(const StepView& v) {
   for (const double d : v.penetration)
     deepest = std::max(deepest, d);
   t.penetration.push_back(deepest);
+  t.ms.push_back(v.ms);
   if (reference_) {
     if (t.spec == *reference_) {
       reference_states_.push_back(position);

@@ -26,8 +26,9 @@ struct ReplayTrack {
   // Per state (0 = as built, then one per step): energy-free displacement of the step into it,
   // summed over the dynamic bodies (m); the deepest overlap of any two boxes in it (m); and the
   // distance of the dynamic bodies' centres from the reference's, largest and root mean square
-  // (m; empty without a reference).
-  std::vector<double> efd, penetration, error_max, error_rms;
+  // (m; empty without a reference). And the wall time of the step into it (ms; NaN for state 0,
+  // which no step led to).
+  std::vector<double> efd, penetration, error_max, error_rms, ms;
   struct Event {
     int step;
     std::string kind;

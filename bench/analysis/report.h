@@ -31,6 +31,19 @@ struct RunReport {
   bool interrupted = false;  // Ctrl-C: `runs` holds the engines that finished before it
 };
 
+// An engine limit (registry.h) the run's scene exceeds: the engine's label, the limit as listed
+// and as a speed here (m/s), and the fastest the scene asks (stated, or measured in some run).
+struct LimitNote {
+  std::string engine;
+  std::string what;
+  double value = 0.0;
+  std::string unit;
+  double speed_limit = 0.0;
+  double asked = 0.0;
+  std::string source;  // "bullet's initial velocity", "bullet in chain's run"
+};
+std::vector<LimitNote> exceeded_limits(const RunReport& report);
+
 // Fills report.comparison from report.runs and the reference.
 void compare(RunReport& report);
 

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 namespace chainbench {
 namespace {
@@ -17,7 +18,9 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-Timing summarize(std::vector<double>& samples, double setup_ms) {
+}  // namespace
+
+Timing summarize_steps(std::vector<double> samples, double setup_ms) {
   Timing t;
   t.setup_ms = setup_ms;
   t.samples = static_cast<int>(samples.size());
@@ -30,12 +33,15 @@ Timing summarize(std::vector<double>& samples, double setup_ms) {
     return samples[std::min(n - 1, static_cast<std::size_t>(q * static_cast<double>(n - 1) + 0.5))];
   };
   t.spread_ms = 0.5 * (quantile(0.75) - quantile(0.25));
-  t.p95_ms = samples[std::min(
-      n - 1, static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(n))) - 1)];
+  auto nearest_rank = [&](double q) {
+    const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(n)));
+    return samples[std::min(n, std::max<std::size_t>(rank, 1)) - 1];
+  };
+  t.p95_ms = nearest_rank(0.95);
+  t.p99_ms = nearest_rank(0.99);
+  t.max_ms = samples.back();
   return t;
 }
-
-}  // namespace
 
 std::optional<double> EngineRun::counter(std::string_view name) const {
   const std::vector<CounterDef>& defs = counter_defs();
@@ -136,6 +142,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
           view.counters = engine->counters();
           view.events = engine->events();
           view.degraded = degraded;
+          view.ms = ms;
           for (StepObserver* o : options.observers)
             o->observe(view);
         }
@@ -156,7 +163,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
   run.final_angles = last.angle;
   run.hash = position_hash(run.final_positions);
   if (samples.empty() && steps_taken > 0) samples.push_back(first_ms);
-  run.timing = summarize(samples, setup_ms);
+  run.timing = summarize_steps(std::move(samples), setup_ms);
   if (options.metrics.any()) {
     run.metrics = recorder->result(last);
     run.metrics_computed = true;

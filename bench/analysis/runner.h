@@ -28,6 +28,8 @@ struct Timing {
   double median_ms = 0.0;
   double mean_ms = 0.0;
   double p95_ms = 0.0;
+  double p99_ms = 0.0;  // nearest rank, as p95
+  double max_ms = 0.0;  // the slowest step timed: the frame a game must budget for
   // Half the interquartile range of the step times: how far apart two medians must be before one
   // engine can be called faster than another.
   double spread_ms = 0.0;
@@ -78,6 +80,10 @@ struct RunOptions {
   bool isolate = false;
   double timeout_s = HUGE_VAL;
 };
+
+// The figures of a run's step times (ms, any order): median, mean, p95 and p99 by nearest rank,
+// max, spread. Empty samples give zeros.
+Timing summarize_steps(std::vector<double> samples, double setup_ms);
 
 EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOptions& options);
 

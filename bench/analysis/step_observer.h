@@ -19,6 +19,7 @@ struct StepView {
   std::span<const double> counters;      // the engine's counters of this step (counter_defs order)
   std::span<const EngineEvent> events;   // the bodies the engine's events of this step concern
   bool degraded = false;                 // the engine cut this step short
+  double ms = 0.0;                       // the step's wall time on the steady clock, ms
 };
 
 class StepObserver {

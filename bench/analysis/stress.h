@@ -39,6 +39,7 @@ struct StressVerdict {
   std::string error;                        // the run failed with an exception in the child
   VerdictClass judged = VerdictClass::kOk;  // the child's verdict on a finished run
   std::string detail;                       // what it rests on
+  bool near_miss = false;  // every failed check of the child's verdict was a near miss (verdict.h)
   bool finite = true, in_bounds = true, blow_up = false, tunnelled = false, expect_pass = true;
   std::uint64_t degraded_steps = 0;
   struct Counter {
@@ -54,6 +55,8 @@ struct StressVerdict {
   VerdictClass verdict() const;  // crash, hang, error, or the child's verdict
   std::string verdict_detail() const;
   bool stable() const;
+  // A finished run whose verdict is a near miss.
+  bool near() const { return finished && error.empty() && near_miss; }
   // Whether this verdict fails the stress run: the engine is a gate (registry.h) and the verdict
   // is anything but ok or budget on a case not listed as its known failure.
   bool fatal() const;

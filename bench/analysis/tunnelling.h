@@ -1,16 +1,18 @@
 // Tunnelling: a body passing through another, judged from positions alone.
 //
-// Two solid boxes can meet, press into each other and part, but a box never comes out of another
-// on the side opposite to the one it went in by. For each pair, the centre of one relative to the
-// other moves on a segment each step; the boxes overlap while that relative centre is inside the
-// box of their summed half extents. A pair is tunnelled when the relative centre leaves that box
-// through the face opposite to the face it entered by, within one step (a fast body crossing a
-// thin one) or over several (a box sinking through a floor), and on the way crossed the other's
-// middle with at least half of the smaller box across it: a box that grazes another's corner and
-// slides along its side, overlapping it a little, has not passed through it. Pairs that start the
-// run overlapping have no entry face and are not judged. With rotation each box counts as the
-// square inscribed in the disc its sides always contain, so a pair judged tunnelled certainly
-// crossed.
+// Two solid boxes can meet, press into each other and part, but the centre of one never goes into
+// the other and comes out by another face. For each pair, the centre of one relative to the other
+// moves on a segment each step. A pair is tunnelled when either body's centre, having gone into
+// the other's box (closed: a centre running along a face counts, such as a body grazing along the
+// seam between two touching boxes, which is a face of both), leaves it through any face other
+// than the one it came in by, within one step (a fast body crossing a thin one) or over several
+// (a box sinking through a floor, or one slid along inside a block and out at its far end). A box
+// that grazes another's corner and slides along its side has not: its centre never went in. Faces
+// are judged with an allowance for rounding (a few units in the last place of the coordinates), so
+// that a centre placed on a seam is on it. Pairs whose centres start the run inside have no entry
+// face and are not judged until they leave; a pair counts once a visit. With rotation each box
+// counts as the square inscribed in the disc its sides always contain, so a pair judged tunnelled
+// certainly crossed.
 #pragma once
 
 #include "engine.h"
@@ -42,7 +44,8 @@ class TunnelWatch {
   // step and end_step(), without the pairs.
   void hold(const BodyState& s);
   // The step to `s` moved only the bodies flagged in `moved`: carries the pairs of the others as
-  // check() would; check() the pairs with a moved body, then end_step().
+  // check() would; check() the pairs with a moved body, then end_step(). (A pair that did not
+  // move keeps its record as it is: no state is needed, the argument stays for symmetry.)
   void carry(const BodyState& s, std::span<const std::uint8_t> moved);
 
   // The first tunnelling seen, and how many were seen in all.
@@ -50,12 +53,15 @@ class TunnelWatch {
   std::uint64_t count() const { return count_; }
 
  private:
-  // A face of the summed box: axis * 2 + (1 on the positive side); kNoFace when unknown.
+  // A face of a box: axis * 2 + (1 on the positive side); kNoFace: inside, the face unknown (it
+  // started there); kOut: not inside.
   static constexpr std::int8_t kNoFace = -1;
+  static constexpr std::int8_t kOut = -2;
   struct Inside {
     std::uint64_t pair;  // i << 32 | j
-    std::int8_t entry;
-    bool deep;  // crossed the middle across the entry face since it entered
+    std::int8_t in_j;    // i's centre in j's box: the face it came in by, kNoFace or kOut
+    std::int8_t in_i;    // j's centre in i's box, likewise
+    bool counted;        // this visit was counted as a tunnelling already
   };
   // The pair's entry in inside_, through index_; null when it was not inside after the last step.
   const Inside* find(std::uint64_t pair) const;
@@ -66,17 +72,16 @@ class TunnelWatch {
     const std::uint64_t h = pair * 0x9E3779B97F4A7C15ull;
     return static_cast<std::size_t>(h ^ (h >> 32)) & (index_.size() - 1);
   }
-  // Whether the relative centre's segment r0 -> r1 of pair (i, j) crosses the middle (r = 0)
-  // along `axis` with at least half of the smaller box across the other along the other axis.
-  bool deep(std::size_t i, std::size_t j, Vec2d r0, Vec2d r1, int axis) const;
-  void rest(const BodyState& s, Inside& p) const;
+  // Follows a centre's segment r0 -> r1 against the box of half extents h about the origin:
+  // `entry` (as Inside::in_j) becomes its state after the step; true when it left through a face
+  // other than its entry face.
+  static bool follow(Vec2d r0, Vec2d r1, Vec2d h, std::int8_t& entry);
 
   std::vector<Vec2d> half_;
   std::vector<Inside> inside_, next_;  // pairs overlapping after the last step / this step
   std::vector<std::uint32_t> index_;   // see index()
   std::optional<TunnelEvent> first_;
   std::uint64_t first_pair_ = 0;
-  bool held_ = false;  // hold() has judged inside_ at rest since the last step that moved
   std::uint64_t count_ = 0;
 };
 

@@ -56,6 +56,11 @@ const char* to_string(VerdictClass c) {
   return "?";
 }
 
+bool Verdict::near_miss() const {
+  if (findings.empty()) return false;
+  return std::all_of(findings.begin(), findings.end(), [](const Finding& f) { return f.near; });
+}
+
 std::string Verdict::str() const {
   if (findings.empty()) return to_string(worst);
   return concat({to_string(worst), ": ", findings.front().detail});
@@ -97,7 +102,16 @@ std::string describe(const Scene& scene, const ExpectOutcome& o) {
       what = describe_relation(scene, o);
       break;
   }
-  return concat({head, " ", what, " ", at_state(o.state)});
+  // The margin against what the entry allows; bounds allow nothing and say it already.
+  std::string margin;
+  if (!o.pass && e.kind == Expectation::Kind::kBounds && o.near) {
+    margin = " (a near miss: within a tenth of 5% of the body's size)";
+  } else if (!o.pass && e.kind != Expectation::Kind::kBounds) {
+    const char* unit = is_speed(e.kind) ? " m/s" : " m";
+    margin = concat({", ", fmt_g(o.margin), unit, " beyond its ", fmt_g(o.limit), unit,
+                     o.near ? " (a near miss: within a tenth of it)" : ""});
+  }
+  return concat({head, " ", what, margin, " ", at_state(o.state)});
 }
 
 std::optional<Verdict> judge(const Scene& scene, const Metrics& m,
@@ -108,7 +122,13 @@ std::optional<Verdict> judge(const Scene& scene, const Metrics& m,
   auto name = [&](std::size_t b) { return scene.bodies[b].name; };
   auto add = [&](VerdictClass c, std::string detail, std::vector<std::size_t> bodies = {},
                  int step = -1, std::optional<Vec2d> position = std::nullopt) {
-    v.findings.push_back({c, std::move(detail), std::move(bodies), step, position});
+    Finding f;
+    f.what = c;
+    f.detail = std::move(detail);
+    f.bodies = std::move(bodies);
+    f.step = step;
+    f.position = position;
+    v.findings.push_back(std::move(f));
   };
   if (!*m.finite) add(VerdictClass::kUnstable, "a position or velocity became non-finite");
   if (*m.blow_up) {
@@ -154,14 +174,25 @@ std::optional<Verdict> judge(const Scene& scene, const Metrics& m,
           o->body && kind != Expectation::Kind::kAtRest && kind != Expectation::Kind::kNoOverlap;
       add(VerdictClass::kWrong, describe(scene, *o), std::move(bodies), o->state,
           located ? std::optional<Vec2d>(o->position) : std::nullopt);
+      if (std::isfinite(o->margin)) {
+        v.findings.back().margin = o->margin;
+        v.findings.back().tolerance = o->limit;
+      }
+      v.findings.back().near = o->near;
     }
   }
   if (m.worst_overlap && m.worst_overlap->depth > m.worst_overlap->tolerance) {
     const PairOverlap& w = *m.worst_overlap;
+    const double margin = w.depth - w.tolerance;
+    const bool near = w.tolerance > 0.0 && margin <= 0.1 * w.tolerance;
     add(VerdictClass::kPenetrating,
         concat({name(w.a), " and ", name(w.b), " overlap ", fmt_g(w.depth), " m ", at_state(w.step),
-                " (tolerance ", fmt_g(w.tolerance), " m)"}),
+                " (", fmt_g(margin), " m beyond its tolerance ", fmt_g(w.tolerance), " m",
+                near ? ", a near miss: within a tenth of it" : "", ")"}),
         {w.a, w.b}, w.step);
+    v.findings.back().margin = margin;
+    v.findings.back().tolerance = w.tolerance;
+    v.findings.back().near = near;
   }
   if (degraded_steps > 0) {
     add(VerdictClass::kBudget,

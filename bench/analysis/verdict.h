@@ -52,6 +52,11 @@ struct Finding {
   std::vector<std::size_t> bodies;
   int step = -1;
   std::optional<Vec2d> position;
+  // For a failed check with a tolerance (an expectation, a penetration): how far beyond it the
+  // worst state went and the tolerance (m, or m/s for at_rest), and whether that is a near miss:
+  // within a tenth of the tolerance.
+  std::optional<double> margin, tolerance;
+  bool near = false;
 };
 
 struct Verdict {
@@ -59,6 +64,9 @@ struct Verdict {
   std::vector<Finding> findings;  // every failed check, worst first
 
   bool ok() const { return worst == VerdictClass::kOk; }
+  // Every finding is a near miss (so the worst is wrong or penetrating): tallies count these
+  // apart from clear failures.
+  bool near_miss() const;
   // "ok", or the worst class with its detail: "wrong: expect[0] box2 0.82 m from (0, 2.5)".
   std::string str() const;
 };
@@ -69,7 +77,8 @@ std::optional<Verdict> judge(const Scene& scene, const Metrics& metrics,
                              const std::optional<ExpectResult>& expect,
                              std::uint64_t degraded_steps);
 
-// One line per failed expectation entry: "expect[2] (bounds, box3): 0.41 m outside at step 37".
+// One line per failed expectation entry, with its margin against its tolerance: "expect[2]
+// bounds box3: 0.41 m outside, at (3.41, 0.5) at step 37".
 std::string describe(const Scene& scene, const ExpectOutcome& outcome);
 
 }  // namespace chainbench

@@ -5,8 +5,10 @@
 // needs for a world at rest, or exactly a family's window for a moving scene, so that every
 // engine does the same work (families.h). Families are keyed by size where the scene scales, so
 // --benchmark_format=json carries a complexity fit over it. Counters: bodies, time per body per
-// step, the share of steps cut short, the heap a world holds per body, and every counter the
-// engine declares (registry.h), contacts among them.
+// step, the share of steps cut short, the heap a world holds per body, the median and the slowest
+// single step (the worst frame a game budgets for), and every counter the engine declares
+// (registry.h), contacts among them. Each step is timed on the steady clock and handed to Google
+// Benchmark as manual time, so that the median and the slowest come from the times it sums.
 #include "engine.h"
 #include "engine_spec.h"
 #include "families.h"
@@ -19,7 +21,12 @@
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 
+#ifdef CHAINBENCH_BOX2D3_PLAIN
+#include "plain_pyramid.h"
+#endif
+
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -73,14 +80,18 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
   const double held = heap_in_use() - heap_before;
   CounterTotals counted(*engine);
   double degraded = 0.0;
+  std::vector<double> step_ms;
+  step_ms.reserve(static_cast<std::size_t>(state.max_iterations));  // no growth while timing
+  using Clock = std::chrono::steady_clock;
   for (auto _ : state) {
+    const auto t0 = Clock::now();
     engine->step(step++);
+    const std::chrono::duration<double> took = Clock::now() - t0;
+    state.SetIterationTime(took.count());
+    step_ms.push_back(1e3 * took.count());
     degraded += engine->degraded();
-    if (family.window > 0) {  // a moving scene: count every timed step, outside the timing
-      state.PauseTiming();
-      counted.add(*engine);
-      state.ResumeTiming();
-    }
+    // A moving scene: count every timed step, outside the time measured.
+    if (family.window > 0) counted.add(*engine);
   }
   const auto bodies = static_cast<double>(scene.bodies.size());
   const auto iterations = static_cast<double>(state.iterations());
@@ -90,6 +101,13 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
       bodies * iterations, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["degraded"] = degraded / iterations;
   state.counters["bytes_per_body"] = held / bodies;
+  // The median step and the slowest, ms: a mean hides the frame that misses a game's budget.
+  if (!step_ms.empty()) {
+    const auto middle = step_ms.begin() + static_cast<std::ptrdiff_t>(step_ms.size() / 2);
+    std::nth_element(step_ms.begin(), middle, step_ms.end());
+    state.counters["step_ms_median"] = *middle;
+    state.counters["step_ms_max"] = *std::max_element(step_ms.begin(), step_ms.end());
+  }
   // A world at rest: its counters over a few more steps (some engines count by walking their
   // contacts, which the timing must not include).
   if (family.window == 0) {
@@ -164,6 +182,38 @@ void harness_benchmark(benchmark::State& state, const Family& family, int size,
       benchmark::Counter(bodies * static_cast<double>(state.iterations()),
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
+
+#ifdef CHAINBENCH_BOX2D3_PLAIN
+// plain/pyramid/box2d3/BASE: the pyramid family's scene as a Box2D v3 world built by hand with the
+// plain v3 API (plain_pyramid.h), at the box2d3 engine's defaults, warmed up and timed as
+// step_benchmark times pyramid/box2d3: what the adapter adds is the difference.
+void register_plain_box2d3() {
+  const Family* pyramid = nullptr;
+  for (const Family& family : benchmark_families()) {
+    if (family.name == "pyramid") pyramid = &family;
+  }
+  if (!pyramid) return;
+  const EngineSpec defaults = parse_engine_spec("box2d3");
+  const auto substeps = static_cast<int>(defaults.get_int("substeps"));
+  const int warmup = pyramid->warmup;
+  auto* b =
+      benchmark::RegisterBenchmark("plain/pyramid/box2d3", [substeps, warmup](benchmark::State& s) {
+        PlainBox2d3Pyramid world(static_cast<int>(s.range(0)), substeps);
+        for (int k = 0; k < warmup; ++k)
+          world.step();
+        using Clock = std::chrono::steady_clock;
+        for (auto _ : s) {  // timed as step_benchmark times the engines: the step alone
+          const auto t0 = Clock::now();
+          world.step();
+          s.SetIterationTime(std::chrono::duration<double>(Clock::now() - t0).count());
+        }
+        s.counters["bodies"] = static_cast<double>(world.bodies());
+      });
+  b->Unit(benchmark::kMillisecond)->UseManualTime()->MinTime(0.5);
+  for (const int size : pyramid->sizes)
+    b->Arg(size);
+}
+#endif
 
 void register_harness(const EngineSpec& spec, std::size_t max_bodies) {
   for (const Family& family : benchmark_families()) {
@@ -259,7 +309,7 @@ void register_all(const std::string& engine_list) {
       auto* b = benchmark::RegisterBenchmark(
           (family.name + "/" + spec.label()).c_str(),
           [family, spec](benchmark::State& s) { step_benchmark(s, family, spec); });
-      b->Unit(benchmark::kMillisecond)->UseRealTime();
+      b->Unit(benchmark::kMillisecond)->UseManualTime();
       if (family.window > 0) {
         b->Iterations(family.window);
       } else {
@@ -270,6 +320,9 @@ void register_all(const std::string& engine_list) {
       if (sizes.size() > 1) b->Complexity(benchmark::oN);
     }
   }
+#ifdef CHAINBENCH_BOX2D3_PLAIN
+  if (engine_list.empty()) register_plain_box2d3();
+#endif
   // The harness' cost, at every size the engine under test runs at.
   for (const auto& [spec, max_bodies] : engines) {
     if (spec.label() == subject.label()) register_harness(spec, max_bodies);

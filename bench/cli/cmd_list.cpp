@@ -23,15 +23,12 @@ int list_scenes() {
       std::cout << "\n" << family << ":\n";
     }
     std::cout << "  " << r.name << ": " << r.description << "\n";
+    // Every key --set takes: the scene's own, then those every scene takes (all_params).
     TextTable t({"    key", "default", "range", "meaning"});
-    for (const SceneParam& p : r.params)
+    for (const SceneParam& p : all_params(r))
       t.add({"    " + p.key, fmt_exact(p.value), range(p), p.help});
-    t.add({"    steps", std::to_string(r.steps), "[1, 10000000] whole", "steps to run"});
     t.print(std::cout);
   }
-  std::cout
-      << "\nEvery scene also takes dt (1/60 s), friction (0), restitution (0), rotation (0) and\n"
-         "offset (0 m: moves the whole scene along x and y).\n";
   return 0;
 }
 
@@ -72,6 +69,8 @@ int list_engines() {
     }
     if (e.open_keys) t.add({"  (others)", "", "", "passed to the engine as they are"});
     t.print(std::cout);
+    for (const EngineLimit& l : e.limits)
+      std::cout << "  limit: " << l.what << ": " << fmt_g(l.value, 9) << " " << l.unit << "\n";
     if (!e.defaults.empty()) {
       std::cout << "  canonical default: " << parse_engine_spec(e.name).str() << "\n";
       std::string runs;

@@ -15,7 +15,9 @@ namespace chainbench {
 void add_replay_command(CLI::App& app, int* status) {
   auto args = std::make_shared<RunArgs>();
   args->replay_option = "--out";
-  args->replay_mb_option = "--max-mb";
+  // The size limit has one name, --replay-mb, as in `run`; --max-mb, its first name here, is
+  // still read.
+  args->replay_mb_option = "--replay-mb";
   CLI::App* r = app.add_subcommand(
       "replay", "Write one self-contained HTML page that plays every engine's run of a scene");
   auto* scene = r->add_option("--scene", args->scene, "built-in scene (chainbench list)");
@@ -35,8 +37,8 @@ void add_replay_command(CLI::App& app, int* status) {
   r->add_option("--out", args->replay, "the page to write (HTML)")
       ->required()
       ->check(non_empty_path("output file"));
-  r->add_option("--max-mb", args->replay_mb,
-                "size limit: beyond it only one step in k keeps its positions")
+  r->add_option("--replay-mb,--max-mb", args->replay_mb,
+                "the page's size limit, MB: beyond it only one step in k keeps its positions")
       ->capture_default_str()
       ->check(number_in(0.1, 10000.0));
   r->footer(

@@ -61,6 +61,11 @@ int run_scene(const RunArgs& a) {
   for (const std::string& text : a.require) {
     EngineSpec spec = parse_engine_spec(text);
     if (std::find(engines.begin(), engines.end(), spec) == engines.end()) {
+      // A default the scene rules out: say why, not merely that it is missing.
+      for (const auto& [out, why] : choice.left_out) {
+        if (out == spec)
+          throw InputError("--require " + text + ": left out of the default engines, " + why);
+      }
       throw InputError("--require " + text + ": not among the engines run (" +
                        (a.engines.empty() ? default_engine_list() : a.engines) + ")");
     }
@@ -102,9 +107,11 @@ int run_scene(const RunArgs& a) {
   options.stop = interrupt->flag();
   auto run_one = [&](const EngineSpec& spec) -> std::optional<EngineRun> {
     if (interrupt->stopped()) return std::nullopt;
-    options.progress = [&](int done, int total) { progress.update(spec.str(), done, total); };
+    // The label the table uses, not the canonical spec: that one fills the line with defaults.
+    const std::string label = scene.name + ": " + spec.label();
+    options.progress = [&](int done, int total) { progress.update(label, done, total); };
     // Drawn here first: a plugin's bar is drawn by its child process, and cleared here.
-    progress.update(spec.str(), 0, scene.steps);
+    progress.update(label, 0, scene.steps);
     EngineRun r = run_engine(scene, spec, options);
     progress.clear();
     if (r.interrupted) return std::nullopt;  // a half run says nothing

@@ -14,12 +14,14 @@ namespace {
 // lies between ',' or ';'; a key=value entry continues the spec before it, so none may follow
 // `defaults`.
 std::pair<std::string, bool> take_defaults(const std::string& list) {
+  if (list.empty()) return {list, false};
   std::string rest;
-  bool defaults = false, after_defaults = false;
+  bool defaults = false, after_defaults = false, first = true;
   std::size_t begin = 0;
   while (begin <= list.size()) {
     const std::size_t end = std::min(list.find_first_of(",;", begin), list.size());
     const std::string entry = list.substr(begin, end - begin);
+    if (entry.empty()) throw InputError("engine list \"" + list + "\": empty entry");
     if (entry == kDefaultEngines) {
       if (defaults) throw InputError("--engines " + list + ": " + kDefaultEngines + " given twice");
       defaults = after_defaults = true;
@@ -30,7 +32,9 @@ std::pair<std::string, bool> take_defaults(const std::string& list) {
                          ", which takes no keys");
       }
       after_defaults = false;
-      rest += (rest.empty() ? "" : ",") + entry;  // ',' and ';' separate alike
+      // ',' and ';' separate alike; an empty entry is kept, for the list's parser to refuse.
+      rest += (first ? "" : ",") + entry;
+      first = false;
     }
     begin = end + 1;
   }
@@ -77,6 +81,7 @@ EngineChoice choose_engines(const std::string& list, const std::vector<const Sce
       throw InputError(why + " (--engines " + list + ")");
     } else {
       choice.notes.push_back(specs[k].label() + " left out: " + why);
+      choice.left_out.emplace_back(std::move(specs[k]), std::move(why));
     }
   }
   if (choice.engines.empty()) throw InputError("no default engine can run this scene");

@@ -7,6 +7,7 @@
 #include "scene.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace chainbench {
@@ -14,6 +15,8 @@ namespace chainbench {
 struct EngineChoice {
   std::vector<EngineSpec> engines;
   std::vector<std::string> notes;  // "chain:variant=seed2014 left out: it has no friction, ..."
+  // The defaults left out and why ("scene s: it has no friction, ..."), in registry order.
+  std::vector<std::pair<EngineSpec, std::string>> left_out;
 };
 
 // The entry of an engine list that stands for the defaults: "defaults,box2d:sleep=1" runs them

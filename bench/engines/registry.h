@@ -50,6 +50,18 @@ struct Capabilities {
   bool axis_drives = false;  // a driver that holds one axis and leaves the other free
 };
 
+// A limit an engine imposes on every world it builds, whatever the scene asks: Box2D 2.4 moves no
+// body more than 2 m in one of its steps (b2_maxTranslation). Listed by `chainbench engines`; a
+// run whose scene asks for more is noted under the table, since that engine cannot be right there.
+struct EngineLimit {
+  std::string what;  // "moves no body more than this in one world step (b2_maxTranslation)"
+  double value = 0.0;
+  std::string unit;  // of value: "m", "m/s"
+  // The fastest any body can move in a run of `spec` on `scene`, m/s (a per-step limit over the
+  // engine's own step, sub-steps included).
+  std::function<double(const EngineSpec&, const Scene&)> speed;
+};
+
 struct EngineDef {
   std::string name;
   std::string description;
@@ -80,6 +92,7 @@ struct EngineDef {
   // The specs the benchmark program runs, each with the largest scene it is run on (bodies).
   std::vector<std::pair<std::string, std::size_t>> benchmarks;
   std::function<std::unique_ptr<Engine>(const EngineSpec&, const Scene&)> make;
+  std::vector<EngineLimit> limits;  // what it caps, for every spec
 };
 
 // Every registered engine, in the order bench/CMakeLists.txt lists them.

@@ -89,6 +89,16 @@ class Reader {
   }
 
   bool integer(const json& v, const std::string& path, long long lo, long long hi, int& out) {
+    // A whole number written as a float ("steps": 1e3, 1000.0) is that number, as --steps 1e3
+    // is: JSON has one number type, and the file's writer may not have chosen the form.
+    if (v.is_number_float()) {
+      const double d = v.get<double>();
+      const bool whole = std::isfinite(d) && d == std::floor(d);
+      if (whole && d >= static_cast<double>(lo) && d <= static_cast<double>(hi)) {
+        out = static_cast<int>(d);
+        return true;
+      }
+    }
     if (!v.is_number_integer()) {
       // A whole number too large for 64 bits arrives as a float.
       const bool whole = v.is_number_float() && std::isfinite(v.get<double>()) &&
@@ -529,8 +539,23 @@ Scene parse_scene(const std::string& text, const std::string& source) {
       const std::string at = "bodies[" + std::to_string(i) + "]";
       read_body(r, bodies[i], at, i, s.bodies[i]);
       if (!by_name.emplace(s.bodies[i].name, i).second) {
-        r.problem(at + ".name", "\"" + s.bodies[i].name + "\" already names bodies[" +
-                                    std::to_string(by_name[s.bodies[i].name]) + "]");
+        // A name the reader gave (bodyN, for a body without one) says so: the user never wrote it.
+        const std::size_t first = by_name[s.bodies[i].name];
+        auto unnamed = [&](std::size_t k) {
+          return bodies[k].is_object() && !bodies[k].contains("name");
+        };
+        const std::string name = "\"" + s.bodies[i].name + "\"";
+        const std::string other = "bodies[" + std::to_string(first) + "]";
+        if (unnamed(i)) {
+          r.problem(at + ".name", "is not given, and its default " + name + " already names " +
+                                      other + ": give this body a name");
+        } else if (unnamed(first)) {
+          r.problem(at + ".name",
+                    name + " is already the default name of " + other +
+                        ", which has no name of its own: give it one, or rename this");
+        } else {
+          r.problem(at + ".name", name + " already names " + other);
+        }
       }
     }
   }

@@ -313,6 +313,53 @@ TEST(MotionBounds, BouncesAreBoundedByEnergy) {
   EXPECT_NEAR(motion_bounds(s).speed[2], 1.25 * 10.0 + 1.0, 1e-9);
 }
 
+// The speed bound comes from what the scene can give, not from how long it runs: in a 3 s scene
+// whose crate has 1.5 m to fall onto a wide floor and whose crusher moves at 1 m/s, nothing can
+// move faster than sqrt(2 * 10 * 1.5) + 1 = 6.5 m/s (bound 1.25 * 6.5 + 1 = 9.1 m/s). An engine
+// throwing the squeezed crate at 14 m/s blew up; a fall of 30 m/s, what 3 s of falling would
+// allow, cannot happen here. The same bound holds however long the run.
+TEST(MotionBounds, SpeedComesFromTheHeightToFallAndTheDrivesNotTheRunsLength) {
+  Scene s;
+  s.dt = 1.0 / 60.0;
+  s.steps = 180;
+  s.bodies.push_back({"floor", BodyKind::kStatic, {0, -0.5}, {20, 0.5}, {}, 0, 1, {}, {}});
+  s.bodies.push_back({"crate", BodyKind::kDynamic, {0, 2.0}, {0.5, 0.5}, {}, 1, 1, {}, {}});
+  s.bodies.push_back(
+      {"crusher", BodyKind::kKinematic, {-3, 0.5}, {0.5, 0.5}, {1, 0}, 0, 1, {}, {}});
+  const double bound = 1.25 * (std::sqrt(2.0 * 10.0 * 1.5) + 1.0) + 1.0;
+  EXPECT_NEAR(motion_bounds(s).speed[1], bound, 1e-9);
+  // However long the run, on a floor wide enough that the crusher cannot push the crate off it.
+  Scene longer = s;
+  longer.steps = 3600;  // 60 s: 60 m of crusher travel
+  longer.bodies[0].half_extents.x = 100;
+  EXPECT_NEAR(motion_bounds(longer).speed[1], bound, 1e-9);
+  auto thrown = [&](double speed) {
+    MetricsRecorder m(s, MetricSelection{false, false, true});
+    BodyState at = state({{0, -0.5}, {0, 2.0}, {-3, 0.5}});
+    for (int k = 1; k <= 3; ++k) {
+      BodyState next = at;
+      next.position[1].x += speed * s.dt;
+      next.position[2].x += 1.0 * s.dt;
+      m.observe(at, next, k, false);
+      at = next;
+    }
+    return m.result(at);
+  };
+  const Metrics fast = thrown(14.0);
+  EXPECT_TRUE(*fast.blow_up);
+  EXPECT_EQ(fast.blow_up_body, 1u);
+  EXPECT_NEAR(fast.blow_up_bound, bound, 1e-9);
+  EXPECT_FALSE(*thrown(6.0).blow_up);  // as fast as the fall and the crusher together: physics
+  // A crusher moving up can lift the crate 3 m higher before it falls: sqrt(2 * 10 * 4.5).
+  Scene lifting = s;
+  lifting.bodies[2].velocity = {0, 1};
+  EXPECT_NEAR(motion_bounds(lifting).speed[1], 1.25 * (std::sqrt(90.0) + 1.0) + 1.0, 1e-9);
+  // With the floor too narrow to be sure the crate stays on it, the fall lasts the run.
+  Scene narrow = s;
+  narrow.bodies[0].half_extents.x = 2.0;
+  EXPECT_NEAR(motion_bounds(narrow).speed[1], 1.25 * (10.0 * 3.0 + 1.0) + 1.0, 1e-9);
+}
+
 // Bounces off a moving paddle add its speed twice each time: such a scene bounds no speed, and no
 // speed in it is a blow-up.
 TEST(MotionBounds, BouncesOffAMovingKinematicBodyAreUnbounded) {

@@ -135,6 +135,18 @@ TEST(ReplayPage, IsOneFileWithTheRunsFinalCentresAndTheErrorAtEveryStep) {
     }
     ASSERT_EQ(e["series"]["error_max"].size(), 31u);
     ASSERT_EQ(e["series"]["efd"].size(), 31u);
+    // The wall time of every step as the run timed it: none for the state no step led to, and
+    // the run's slowest step is the largest of them.
+    ASSERT_EQ(e["series"]["ms"].size(), 31u);
+    EXPECT_TRUE(e["series"]["ms"][0].is_null());
+    double slowest = 0.0;
+    for (std::size_t s = 1; s <= 30; ++s) {
+      ASSERT_TRUE(e["series"]["ms"][s].is_number()) << s;
+      EXPECT_GE(e["series"]["ms"][s].get<double>(), 0.0);
+      // The first step is timed apart from the rest (runner.h): the max is over steps 2..30.
+      if (s >= 2) slowest = std::max(slowest, e["series"]["ms"][s].get<double>());
+    }
+    EXPECT_EQ(slowest, run.timing.max_ms);
     // The last error is the run's own comparison with the reference.
     const double last = e["series"]["error_max"][30].get<double>();
     EXPECT_EQ(last, k == 0 ? 0.0 : r.report.comparison[k - 1].error.max);

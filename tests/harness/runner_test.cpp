@@ -22,6 +22,27 @@ TEST(Runner, BareRunTimesEveryStepButTheFirstAndComputesNoMetric) {
   EXPECT_EQ(r.final_positions.size(), s.bodies.size());
   EXPECT_EQ(r.hash, position_hash(r.final_positions));
   EXPECT_LE(r.timing.median_ms, r.timing.p95_ms);
+  EXPECT_LE(r.timing.p95_ms, r.timing.p99_ms);
+  EXPECT_LE(r.timing.p99_ms, r.timing.max_ms);
+}
+
+// The worst frame: p99 by nearest rank and the slowest step. Of 200 steps, 197 of 1 ms and one
+// each of 1.5, 2 and 9 ms: p95 (rank 190) hides them all, p99 is rank 198 (1.5 ms), max 9 ms.
+TEST(Runner, StepTimesGiveP99AndTheSlowestStep) {
+  std::vector<double> samples(200, 1.0);
+  samples[17] = 9.0;
+  samples[120] = 2.0;
+  samples[5] = 1.5;
+  const Timing t = summarize_steps(samples, 0.0);
+  EXPECT_EQ(t.median_ms, 1.0);
+  EXPECT_EQ(t.p95_ms, 1.0);
+  EXPECT_EQ(t.p99_ms, 1.5);  // rank ceil(0.99 * 200) = 198: 1.5 < 2 < 9 above it
+  EXPECT_EQ(t.max_ms, 9.0);
+  const Timing one = summarize_steps({4.0}, 0.0);
+  EXPECT_EQ(one.p99_ms, 4.0);
+  EXPECT_EQ(one.max_ms, 4.0);
+  const Timing none = summarize_steps({}, 0.0);
+  EXPECT_EQ(none.max_ms, 0.0);
 }
 
 // Each engine's counters are aggregated as it declares them: per-step means, sums and maxima.

@@ -146,6 +146,34 @@ TEST(SceneFile, ValidFileReadsAsWritten) {
 }
 
 // null leaves an axis free: the driver holds x and gravity and contacts keep y.
+// A name the reader made up (bodyN for a body without one) that clashes with one the file gives
+// says it is a default, whichever comes first.
+TEST(SceneFile, ADefaultNameThatClashesSaysItIsADefault) {
+  const std::string later = error_of(R"({"bodies": [
+    {"name": "body1", "type": "static", "center": [0, 0], "half_extents": [1, 1]},
+    {"type": "static", "center": [5, 0], "half_extents": [1, 1]}]})");
+  EXPECT_NE(later.find("bodies[1].name: is not given, and its default \"body1\" already names "
+                       "bodies[0]: give this body a name"),
+            std::string::npos)
+      << later;
+  const std::string earlier = error_of(R"({"bodies": [
+    {"type": "static", "center": [0, 0], "half_extents": [1, 1]},
+    {"name": "body0", "type": "static", "center": [5, 0], "half_extents": [1, 1]}]})");
+  EXPECT_NE(earlier.find("bodies[1].name: \"body0\" is already the default name of bodies[0], "
+                         "which has no name of its own"),
+            std::string::npos)
+      << earlier;
+}
+
+// JSON has one number type: a whole number written as a float is that number, as --steps 1e3
+// is; a fraction is still refused (StepsFraction below).
+TEST(SceneFile, AWholeNumberWrittenAsAFloatIsThatNumber) {
+  EXPECT_EQ(parse_scene(edited("\"steps\": 60", "\"steps\": 1e3"), "scene.json").steps, 1000);
+  EXPECT_EQ(parse_scene(edited("\"steps\": 60", "\"steps\": 60.0"), "scene.json").steps, 60);
+  const Scene s = parse_scene(edited("\"from_step\": 10", "\"from_step\": 1e1"), "scene.json");
+  EXPECT_EQ(s.expect[4].from_step, 10);
+}
+
 TEST(SceneFile, DriverWithANullAxisHoldsTheOtherOnly) {
   const Scene s =
       parse_scene(edited("\"velocity\": [2, 0]", "\"velocity\": [2, null]"), "scene.json");

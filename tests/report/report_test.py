@@ -25,11 +25,15 @@ def run_entry(label, ms, gate=False, expect=None, verdict="ok"):
 
 
 def scene(name, a_ms, b_ms, b_miss, family="stacking"):
+    ant = run_entry("ant", a_ms, gate=True, expect={"pass": True, "max_error": 0.0})
+    if name == "stack":  # a run with the worst frame; the others are older files without it
+        ant["ms_per_step"].update({"p99": 0.0031, "max": 0.0042})
+        ant["expect"].update({"max_speed_error": 0.0, "near_miss": False})
     return {"schema": "chainbench.run/1",
             "scene": {"name": name, "family": family, "bodies": 3, "steps": 60,
                       "expect": [{"kind": "center"}]},
             "reference": "bee:spec",
-            "runs": [run_entry("ant", a_ms, gate=True, expect={"pass": True, "max_error": 0.0}),
+            "runs": [ant,
                      run_entry("bee", b_ms, expect={"pass": b_miss is None,
                                                      "max_error": b_miss or 0.001},
                                verdict="ok" if b_miss is None else "wrong")],
@@ -68,7 +72,8 @@ class ReportTest(unittest.TestCase):
         cases = [stress_case("fast", "fast body", "ant", "tunnelled", known="no CCD"),
                  stress_case("fast", "fast body", "bee", "ok"),
                  stress_case("tall", "tall stack", "ant", "ok"),
-                 stress_case("tall", "tall stack", "bee", "wrong")]
+                 stress_case("tall", "tall stack", "bee", "wrong"),
+                 dict(stress_case("wide", "tall stack", "bee", "wrong"), near_miss=True)]
         (root / "stress.json").write_text(json.dumps({"schema": "chainbench.stress/1",
                                                       "cases": cases}))
         result = subprocess.run([sys.executable, str(SCRIPTS / "report.py"), str(root)],
@@ -100,6 +105,17 @@ class ReportTest(unittest.TestCase):
         self.assertIn("`ant` is ok on 1 of 2 (elsewhere 1 tunnelled; most in fast body (1); "
                       "1 listed known failure)", c)
         self.assertIn("Where it breaks (1 stress case: fast body), `bee` is ok on 1 of them", c)
+        # A near miss is tallied apart from a clear one.
+        self.assertIn("`bee` is ok on 1 of 3 (elsewhere 1 wrong, 1 wrong (near miss);", c)
+
+    def test_scene_tables_show_the_slowest_step_where_the_run_has_it(self):
+        self.assertIn("| engine | ms/step | max ms | x ref |", self.text)
+        self.assertIn("| ant | 0.001 | 0.0042 |", self.text)
+        self.assertIn("| ant | 0.002 | - |", self.text)  # pile: a file without max
+
+    def test_expect_cells_keep_metres_and_speeds_apart(self):
+        self.assertIn("| pass (0 m, rest 0 m/s) |", self.text)
+        self.assertIn("| **FAIL** (1.5 m) |", self.text)
 
     def test_columns_are_explained(self):
         self.assertIn("What the columns say:", self.text)
@@ -107,6 +123,7 @@ class ReportTest(unittest.TestCase):
 
     def test_stress_is_a_grid(self):
         self.assertIn("| case | `ant` | `bee` |", self.text)
+        self.assertIn("| wide | - | **wrong** |", self.text)
         self.assertIn("| fast | **tunnelled** (known) | ok |", self.text)
 
     def test_scenes_link_their_replay_with_its_screenshot(self):

@@ -155,6 +155,20 @@ class MovingTablesTest(unittest.TestCase):
 class HarnessTableTest(unittest.TestCase):
     """The harness' cost per family and size: bare, with every metric, and the ratio."""
 
+    def test_a_plain_world_sits_beside_its_adapter_and_is_no_column(self):
+        data = {"context": MOVING_CONTEXT, "benchmarks": [
+            MOVING_RUNS[("pyr", "fast", "10")], MOVING_RUNS[("pyr", "ref", "10")],
+            bench("plain/pyr/ref/10/min_time:0.500/real_time", 2.5, 5510, 450)]}
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "bench.json")
+            with open(path, "w", encoding="utf-8") as f:
+                json.dump(data, f)
+            context, runs = bench_table.load(path)
+        self.assertEqual(bench_table.ordered(runs)[0], ["fast", "ref"])
+        lines = bench_table.tables(context, runs).splitlines()
+        start = next(i for i, line in enumerate(lines) if line.startswith("Adapter cost:"))
+        self.assertEqual(lines[start + 4], "| `many_pyramids` rows=cols=10 | `ref` | 3.000 | 2.500 | 1.20x |")
+
     def test_each_size_has_its_bare_and_metrics_times_and_their_ratio(self):
         def harness(family, size, k, ms, bodies):
             name = f"harness/{family}/{size}/metrics:{k}/min_time:0.500/real_time"

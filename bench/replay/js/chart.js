@@ -1,7 +1,7 @@
 // The charts under the scene, one panel per figure over the steps, one line per engine: the
 // distance from the reference's centres (largest over the dynamic bodies), the energy-free
-// displacement of each step (summed over them) and the deepest overlap of any two boxes; all at
-// every step in full precision. A cursor marks the current step, ticks the failed checks (red)
+// displacement of each step (summed over them), the deepest overlap of any two boxes and the wall
+// time of each step; all at every step in full precision. A cursor marks the current step, ticks the failed checks (red)
 // and events (the engine's colour); a click or drag picks the step.
 
 const CHART_LEFT = 70, CHART_RIGHT = 14, CHART_TITLE = 15, CHART_AXIS = 18;
@@ -23,6 +23,11 @@ class Chart {
     this.panels.push({ key: "efd", skip: -1,
                        title: "energy-free displacement of the step, summed over the dynamic bodies (m)" });
     this.panels.push({ key: "penetration", skip: -1, title: "deepest overlap of two boxes (m)" });
+    // The wall time of each step, as the run timed it: where the slow frames are, and what the
+    // scene was doing then. Absent from pages written before it was recorded.
+    if (model.engines.some((e) => e.series.ms)) {
+      this.panels.push({ key: "ms", skip: -1, title: "wall time of the step (ms)" });
+    }
     this.ticks = model.engines.map((e, k) => marks.chartSteps(k));
     this.cache = document.createElement("canvas");
     let dragging = false;

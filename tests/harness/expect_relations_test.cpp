@@ -191,7 +191,7 @@ TEST(ExpectRelations, APlayersOwnToleranceMakesItsCrushPenetrating) {
   EXPECT_FALSE(found(lax, VerdictClass::kPenetrating)) << lax.verdict->str();
   const EngineRun strict = run(crush(", \"penetration_tolerance\": 0.05"), "chain");
   ASSERT_TRUE(strict.verdict && strict.metrics.worst_overlap);
-  EXPECT_TRUE(found(strict, VerdictClass::kPenetrating, "(tolerance 0.05 m)"))
+  EXPECT_TRUE(found(strict, VerdictClass::kPenetrating, "beyond its tolerance 0.05 m"))
       << strict.verdict->str();
   EXPECT_EQ(strict.metrics.worst_overlap->tolerance, 0.05);
 }

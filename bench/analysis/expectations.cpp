@@ -1,5 +1,7 @@
 #include "expectations.h"
 
+#include "expect_relations.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -50,7 +52,7 @@ ExpectationCheck::ExpectationCheck(const Scene& scene) : scene_(scene) {
     const int first = e.first_state(scene.steps), last = e.last_state(scene.steps);
     open(state_count, first, last);
     if (e.kind == Kind::kAtRest) open(state_count, first - 1, last - 1);
-    if (e.kind == Kind::kNoOverlap) open(depth_count, first, last);
+    if (e.kind == Kind::kNoOverlap && e.bodies.empty()) open(depth_count, first, last);
   }
   needs_state_.resize(states);
   needs_depth_.resize(states);
@@ -90,10 +92,21 @@ void ExpectationCheck::observe(int k, const BodyState& state, const BodyState* p
     if (k < e.first_state(scene_.steps) || k > e.last_state(scene_.steps)) continue;
     ExpectOutcome& o = outcomes_[n];
     if (e.kind == Kind::kNoOverlap) {
-      const double depth = deepest ? deepest->depth : 0.0;
+      // Named bodies: their own pairs, whatever their kinds; else the run's deepest pair.
+      const PairOverlap among = e.bodies.empty() ? PairOverlap{} : deepest_among(scene_, e, state);
+      const PairOverlap* pair = e.bodies.empty() ? deepest : &among;
+      const double depth = pair ? pair->depth : 0.0;
       if (judge(o, depth, std::max(0.0, depth - e.depth), depth <= e.depth, k)) {
         o.rms = o.error;
-        if (depth > 0.0) o.body = deepest->a, o.other = deepest->b;
+        if (depth > 0.0) o.body = pair->a, o.other = pair->b;
+      }
+      continue;
+    }
+    if (is_relation(e.kind)) {
+      const RelationJudgement r = judge_relation(scene_, e, state);
+      if (judge(o, r.value, r.error, r.pass, k)) {
+        o.body = e.body, o.other = r.other, o.position = state.position[e.body];
+        o.rms = o.error;
       }
       continue;
     }
@@ -135,7 +148,7 @@ void ExpectationCheck::observe(int k, const BodyState& state, const BodyState* p
           pass = value <= e.speed;
           break;
         }
-        case Kind::kNoOverlap:
+        default:  // judged above
           break;
       }
       if (judge(o, value, error, pass, k)) o.body = *b, o.position = p;
@@ -173,6 +186,14 @@ ExpectResult ExpectationCheck::result() const {
       case Kind::kNoOverlap:
         o.limit = e.depth;
         o.margin = o.value - e.depth;
+        break;
+      case Kind::kAbove:
+      case Kind::kBelow:
+      case Kind::kOn:
+      case Kind::kSqueezed:
+        // A failed `on` off the other along x is at least that far beyond.
+        o.limit = e.tolerance;
+        o.margin = o.pass ? o.value - e.tolerance : o.error;
         break;
     }
     if (o.state < 0) o.margin = HUGE_VAL;

@@ -263,8 +263,7 @@ void MetricsRecorder::visit(const BodyState& before, const BodyState& after, std
   if (d <= 0.0 || below_resolution(d, scale)) return;
   // A pair created overlapping may stay as deep as it started while it recovers, but not at
   // the end of the run.
-  const double base =
-      scene_.penetration_tolerance.value_or(0.1 * std::min({hi.x, hi.y, hj.x, hj.y}));
+  const double base = scene_.pair_penetration_tolerance(i, j);
   const double tolerance = step < scene_.steps ? std::max(base, initial_depth(i, j)) : base;
   fresh_.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), d, tolerance});
   if (!sel_.penetration) return;

@@ -119,6 +119,22 @@ ordered_json expectation_json(const Scene& s, const Expectation& e) {
       break;
     case Expectation::Kind::kNoOverlap:
       j["no_overlap"] = e.depth;
+      if (!e.bodies.empty()) {
+        ordered_json names = ordered_json::array();
+        for (const std::size_t b : e.bodies)
+          names.push_back(s.bodies[b].name);
+        j["bodies"] = std::move(names);
+      }
+      break;
+    case Expectation::Kind::kAbove:
+    case Expectation::Kind::kBelow:
+    case Expectation::Kind::kOn:
+      j[to_string(e.kind)] = s.bodies[e.other].name;
+      j["tolerance"] = e.tolerance;
+      break;
+    case Expectation::Kind::kSqueezed:
+      j["squeezed"] = true;
+      j["tolerance"] = e.tolerance;
       break;
   }
   if (e.windowed()) {

@@ -49,7 +49,8 @@ std::string scene_identity(const Scene& s) {
   for (const SceneBody& b : s.bodies) {
     id += "|" + b.name + ":" + to_string(b.kind) + ":" + exact(b.center) + ":" +
           exact(b.half_extents) + ":" + exact(b.velocity) + ":" + exact(b.mass) + ":" +
-          exact(b.gravity_scale) + ":" + optional(b.friction) + ":" + optional(b.restitution);
+          exact(b.gravity_scale) + ":" + optional(b.friction) + ":" + optional(b.restitution) +
+          ":" + optional(b.penetration_tolerance);
   }
   for (const Driver& d : s.drivers) {
     id += "|drive " + std::to_string(d.body) + ":" + exact(d.velocity) + ":" +
@@ -62,7 +63,11 @@ std::string scene_identity(const Scene& s) {
           optional(e.min_x) + optional(e.min_y) + optional(e.max_x) + optional(e.max_y) + ":" +
           exact(e.speed) + ":" + exact(e.depth) + ":" +
           (e.from_step ? std::to_string(*e.from_step) : "-") + ":" +
-          (e.to_step ? std::to_string(*e.to_step) : "-");
+          (e.to_step ? std::to_string(*e.to_step) : "-") + ":" + std::to_string(e.other);
+    for (const std::size_t b : e.bodies) {
+      id.push_back(',');
+      id.append(std::to_string(b));
+    }
   }
   return grid_fingerprint(id);
 }

@@ -104,6 +104,25 @@ std::vector<StressCase> stress_cases() {
   add("time step", "stack", {"n=10", "dt=0.001", "steps=600"}, true);
   add("time step", "push_row", {"n=10", "dt=0.1", "steps=12"}, false);
   add("time step", "push_row", {"n=10", "dt=0.001", "steps=1200"}, false);
+  // Large steps, up to the 1 s a scene allows, on what a game does every frame: a resting stack,
+  // a driven push and the same push against friction, each over 3 s (180 steps at 1/60 s). Two
+  // go into --quick.
+  struct Step {
+    const char* dt;  // empty: the scene's 1/60 s
+    const char* steps;
+  };
+  for (const Step& t :
+       {Step{"", "180"}, Step{"0.1", "30"}, Step{"0.35", "9"}, Step{"0.5", "6"}, Step{"1", "3"}}) {
+    auto with_dt = [&](std::vector<std::string> sets) {
+      if (*t.dt) sets.push_back(std::string("dt=") + t.dt);
+      sets.push_back(std::string("steps=") + t.steps);
+      return sets;
+    };
+    const bool half = std::string(t.dt) == "0.5";
+    add("large time step", "stack", with_dt({"n=2"}), half);
+    add("large time step", "push_stack", with_dt({"height=1"}), false);
+    add("large time step", "push_stack", with_dt({"height=1", "friction=0.5"}), half);
+  }
   for (const char* speed : {"10", "50", "100", "500"}) {
     add("fast body", "projectile", {std::string("speed=") + speed}, std::string(speed) == "100");
   }

@@ -1,5 +1,7 @@
 #include "verdict.h"
 
+#include "expect_relations.h"
+
 #include "text_table.h"
 
 #include <algorithm>
@@ -92,6 +94,12 @@ std::string describe(const Scene& scene, const ExpectOutcome& o) {
       what = o.body ? concat({scene.bodies[*o.body].name, " / ", scene.bodies[*o.other].name,
                               ": overlap ", fmt_g(o.value), " m, limit ", fmt_g(e.depth)})
                     : concat({"overlap ", fmt_g(o.value), " m, limit ", fmt_g(e.depth)});
+      break;
+    case Expectation::Kind::kAbove:
+    case Expectation::Kind::kBelow:
+    case Expectation::Kind::kOn:
+    case Expectation::Kind::kSqueezed:
+      what = describe_relation(scene, o);
       break;
   }
   // The margin against what the entry allows; bounds allow nothing and say it already.

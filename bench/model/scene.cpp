@@ -43,13 +43,38 @@ void check_expectation(Checker& c, const Scene& s, std::size_t i) {
   const bool any_dynamic = std::any_of(s.bodies.begin(), s.bodies.end(), [](const SceneBody& b) {
     return b.kind == BodyKind::kDynamic;
   });
+  const bool relation = is_relation(e.kind);
   if (e.kind != Kind::kNoOverlap) {
-    if (every && !any_dynamic) {
+    if (every && relation) {
+      c.add(at + ".body", std::string("\"*\" cannot be ") + to_string(e.kind) + ": name a body");
+    } else if (every && !any_dynamic) {
       c.add(at + ".body", "\"*\" names every dynamic body, and the scene has none");
     } else if (every && e.kind == Kind::kCenter) {
       c.add(at + ".body", "\"*\" cannot have one expected centre: name a body");
     } else if (!every && e.body >= s.bodies.size()) {
       c.add(at + ".body", "names no body of the scene");
+    }
+  }
+  if (relation && e.kind != Kind::kSqueezed) {
+    const std::string key = at + "." + to_string(e.kind);
+    if (e.other >= s.bodies.size()) {
+      c.add(key, "names no body of the scene");
+    } else if (!every && e.other == e.body) {
+      c.add(key, "names the entry's own body: name another");
+    }
+  }
+  if (relation) c.positive_within(at + ".tolerance", e.tolerance, 1e6, "> 0 and <= 1e6 m");
+  if (e.kind == Kind::kNoOverlap && !e.bodies.empty()) {
+    if (e.bodies.size() < 2) c.add(at + ".bodies", "must name at least two bodies");
+    std::vector<std::size_t> seen;
+    for (std::size_t k = 0; k < e.bodies.size(); ++k) {
+      const std::string path = at + ".bodies[" + std::to_string(k) + "]";
+      if (e.bodies[k] >= s.bodies.size()) {
+        c.add(path, "names no body of the scene");
+      } else if (std::find(seen.begin(), seen.end(), e.bodies[k]) != seen.end()) {
+        c.add(path, "\"" + s.bodies[e.bodies[k]].name + "\" is named twice");
+      }
+      seen.push_back(e.bodies[k]);
     }
   }
   auto coordinate = [&](const std::string& path, double v) {
@@ -90,6 +115,11 @@ void check_expectation(Checker& c, const Scene& s, std::size_t i) {
     case Kind::kNoOverlap:
       c.finite_within(at + ".no_overlap", e.depth, 0.0, L::kMaxHalfExtent, "in [0, 1e6] m");
       break;
+    case Kind::kAbove:
+    case Kind::kBelow:
+    case Kind::kOn:
+    case Kind::kSqueezed:
+      break;  // checked above
   }
   if (e.from_step && (*e.from_step < 0 || *e.from_step > s.steps)) {
     c.add(at + ".from_step", "must be in [0, " + std::to_string(s.steps) +
@@ -154,6 +184,9 @@ std::vector<SceneIssue> validate(const Scene& s) {
     if (b.friction)
       c.finite_within(at + ".friction", *b.friction, 0.0, L::kMaxFriction, "in [0, 10]");
     if (b.restitution) c.finite_within(at + ".restitution", *b.restitution, 0.0, 1.0, "in [0, 1]");
+    if (b.penetration_tolerance)
+      c.positive_within(at + ".penetration_tolerance", *b.penetration_tolerance, L::kMaxHalfExtent,
+                        "> 0 and <= 1e6 m");
   }
   for (std::size_t i = 0; i < s.drivers.size() && i < L::kMaxDrivers; ++i) {
     const Driver& d = s.drivers[i];
@@ -206,8 +239,32 @@ const char* to_string(Expectation::Kind kind) {
       return "at_rest";
     case Expectation::Kind::kNoOverlap:
       return "no_overlap";
+    case Expectation::Kind::kAbove:
+      return "above";
+    case Expectation::Kind::kBelow:
+      return "below";
+    case Expectation::Kind::kOn:
+      return "on";
+    case Expectation::Kind::kSqueezed:
+      return "squeezed";
   }
   return "?";
+}
+
+bool is_relation(Expectation::Kind kind) {
+  using Kind = Expectation::Kind;
+  return kind == Kind::kAbove || kind == Kind::kBelow || kind == Kind::kOn ||
+         kind == Kind::kSqueezed;
+}
+
+double Scene::pair_penetration_tolerance(std::size_t i, std::size_t j) const {
+  const std::optional<double>& a = bodies[i].penetration_tolerance;
+  const std::optional<double>& b = bodies[j].penetration_tolerance;
+  if (a && b) return std::min(*a, *b);
+  if (a || b) return a ? *a : *b;
+  if (penetration_tolerance) return *penetration_tolerance;
+  const Vec2d hi = bodies[i].half_extents, hj = bodies[j].half_extents;
+  return 0.1 * std::min({hi.x, hi.y, hj.x, hj.y});
 }
 
 const char* to_string(BodyKind kind) {

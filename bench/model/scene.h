@@ -27,6 +27,9 @@ struct SceneBody {
   double gravity_scale = 1.0;
   std::optional<double> friction;     // else the scene's
   std::optional<double> restitution;  // else the scene's
+  // What another box may overlap this one, m, before the run is `penetrating`; see
+  // pair_penetration_tolerance(). (Initialised so that brace lists of the fields above stay whole.)
+  std::optional<double> penetration_tolerance = std::nullopt;
 };
 
 // Holds the body's velocity along the axes it names at the start of every step n with
@@ -48,12 +51,20 @@ struct Driver {
 //               ((0, 0): it stays put)
 //   kBounds     the body's centre within [min, max] on each axis that has a bound
 //   kAtRest     the body's speed, measured from its displacement in a step, at most `speed` m/s
-//   kNoOverlap  no two boxes (at least one dynamic) overlap deeper than `depth` metres
-// kMoved, kBounds and kAtRest may name every dynamic body at once (kEveryDynamic). Without a window
+//   kNoOverlap  no two boxes (at least one dynamic) overlap deeper than `depth` metres; with
+//               `bodies`, no two of the bodies named there (of any kind)
+//   kAbove      the body's bottom face at or above `other`'s top face less `tolerance` metres
+//   kBelow      the body's top face at or below `other`'s bottom face plus `tolerance` metres
+//   kOn         the body's bottom face within `tolerance` metres of `other`'s top face, and the
+//               two overlapping along x
+//   kSqueezed   the body within `tolerance` metres of (or overlapping) static or kinematic bodies
+//               on two opposite sides (left and right, or below and above)
+// Faces are those of each box's axis-aligned extent at its angle. kMoved, kBounds and kAtRest may
+// name every dynamic body at once (kEveryDynamic). Without a window
 // an entry is checked on the final state; with one, on every state k (k steps taken, 0 = as built)
 // with from_step <= k <= to_step.
 struct Expectation {
-  enum class Kind { kCenter, kMoved, kBounds, kAtRest, kNoOverlap };
+  enum class Kind { kCenter, kMoved, kBounds, kAtRest, kNoOverlap, kAbove, kBelow, kOn, kSqueezed };
   static constexpr std::size_t kEveryDynamic = std::numeric_limits<std::size_t>::max();
 
   Kind kind = Kind::kCenter;
@@ -65,6 +76,8 @@ struct Expectation {
   double speed = 0.0;
   double depth = 0.0;
   std::optional<int> from_step, to_step;
+  std::size_t other = 0;            // kAbove, kBelow, kOn: the body the fact relates `body` to
+  std::vector<std::size_t> bodies;  // kNoOverlap: the bodies whose pairs count; empty: all
 
   bool windowed() const { return from_step.has_value() || to_step.has_value(); }
   // The states the entry is checked on in a run of `steps` steps: [first, last].
@@ -73,6 +86,9 @@ struct Expectation {
 };
 
 const char* to_string(Expectation::Kind kind);
+// Whether the kind relates a body to others (kAbove, kBelow, kOn, kSqueezed): judged from the
+// positions of several bodies, its error in metres.
+bool is_relation(Expectation::Kind kind);
 
 struct Scene {
   std::string name;
@@ -94,6 +110,10 @@ struct Scene {
 
   double friction_of(const SceneBody& b) const { return b.friction.value_or(friction); }
   double restitution_of(const SceneBody& b) const { return b.restitution.value_or(restitution); }
+  // What bodies i and j may overlap, m, before the run is `penetrating`: the smaller of the two
+  // bodies' own tolerances where either has one (each body's is a promise about that body, so a
+  // pair keeps both), else the scene's, else 0.1 x the smallest of the two boxes' half extents.
+  double pair_penetration_tolerance(std::size_t i, std::size_t j) const;
   bool has_gravity() const { return gravity.x != 0.0 || gravity.y != 0.0; }
 };
 

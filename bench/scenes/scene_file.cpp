@@ -20,6 +20,9 @@ namespace {
 
 using nlohmann::json;
 
+// The most bodies a no_overlap entry may name: its pairs are tested one by one at every state.
+constexpr std::size_t kMaxSelected = 100;
+
 // Collects problems with their JSON paths instead of stopping at the first.
 class Reader {
  public:
@@ -247,7 +250,7 @@ void read_body(Reader& r, const json& j, const std::string& at, std::size_t inde
   }
   r.only_keys(j, at,
               {"name", "type", "center", "half_extents", "mass", "density", "velocity", "friction",
-               "restitution", "gravity_scale"});
+               "restitution", "gravity_scale", "penetration_tolerance"});
   b.name = "body" + std::to_string(index);
   if (j.contains("name")) r.string(j["name"], at + ".name", b.name);
   std::string type;
@@ -276,6 +279,9 @@ void read_body(Reader& r, const json& j, const std::string& at, std::size_t inde
   if (j.contains("friction") && r.number(j["friction"], at + ".friction", v)) b.friction = v;
   if (j.contains("restitution") && r.number(j["restitution"], at + ".restitution", v))
     b.restitution = v;
+  if (j.contains("penetration_tolerance") &&
+      r.number(j["penetration_tolerance"], at + ".penetration_tolerance", v))
+    b.penetration_tolerance = v;
 
   const bool has_mass = j.contains("mass"), has_density = j.contains("density");
   if (b.kind != BodyKind::kDynamic) {
@@ -313,8 +319,63 @@ void read_bound(Reader& r, const json& v, const std::string& path, std::optional
   }
 }
 
-// An `expect` entry states one fact: center or moved (with tolerance), min/max, at_rest or
-// no_overlap.
+// The keys of a relation entry (above, below, on: the other body's name; squeezed: true) and of
+// no_overlap's `bodies` selector.
+void read_relation(Reader& r, const json& j, const std::string& at,
+                   const std::unordered_map<std::string, std::size_t>& by_name, Expectation& e) {
+  using Kind = Expectation::Kind;
+  auto body_named = [&](const json& v, const std::string& path, std::size_t& out) {
+    std::string name;
+    if (!r.string(v, path, name)) return false;
+    const auto it = by_name.find(name);
+    if (it == by_name.end()) {
+      r.problem(path, "no body is named \"" + name + "\"");
+      return false;
+    }
+    out = it->second;
+    return true;
+  };
+  if (e.kind == Kind::kNoOverlap) {
+    if (!j.contains("bodies")) return;
+    const json& v = j["bodies"];
+    if (!v.is_array()) {
+      r.problem(at + ".bodies",
+                std::string("must be an array of body names, got ") + Reader::type_name(v));
+      return;
+    }
+    if (v.size() > kMaxSelected) {
+      r.problem(at + ".bodies", "names " + std::to_string(v.size()) + " bodies, more than " +
+                                    std::to_string(kMaxSelected) +
+                                    " (leave bodies out to check every pair)");
+      return;
+    }
+    e.bodies.assign(v.size(), 0);
+    for (std::size_t k = 0; k < v.size(); ++k)
+      body_named(v[k], at + ".bodies[" + std::to_string(k) + "]", e.bodies[k]);
+    if (v.size() < 2) r.problem(at + ".bodies", "must name at least two bodies");
+    return;
+  }
+  if (j.contains("bodies"))
+    r.problem(at + ".bodies", "belongs to no_overlap: a selector of the bodies whose pairs count");
+  const char* key = to_string(e.kind);
+  if (e.kind == Kind::kSqueezed) {
+    bool yes = false;
+    if (r.boolean(j[key], at + "." + key, yes) && !yes)
+      r.problem(at + "." + key, "must be true (an entry states a fact that holds)");
+  } else if (is_relation(e.kind)) {
+    body_named(j[key], at + "." + key, e.other);
+  }
+  if (!is_relation(e.kind)) return;
+  if (!j.contains("tolerance")) {
+    r.problem(at + ".tolerance",
+              std::string("is required with ") + key + ": the allowed distance, m");
+  } else {
+    r.number(j["tolerance"], at + ".tolerance", e.tolerance);
+  }
+}
+
+// An `expect` entry states one fact: center or moved (with tolerance), min/max, at_rest,
+// no_overlap (optionally among named bodies), above, below, on or squeezed (with tolerance).
 void read_expectation(Reader& r, const json& j, const std::string& at,
                       const std::unordered_map<std::string, std::size_t>& by_name, Scene& s) {
   using Kind = Expectation::Kind;
@@ -324,42 +385,54 @@ void read_expectation(Reader& r, const json& j, const std::string& at,
   }
   r.only_keys(j, at,
               {"body", "center", "moved", "tolerance", "min", "max", "at_rest", "no_overlap",
-               "from_step", "to_step"});
+               "bodies", "above", "below", "on", "squeezed", "from_step", "to_step"});
   const bool center = j.contains("center"), moved = j.contains("moved");
   const bool bounds = j.contains("min") || j.contains("max");
   const bool at_rest = j.contains("at_rest"), no_overlap = j.contains("no_overlap");
-  const int kinds = int{center} + int{moved} + int{bounds} + int{at_rest} + int{no_overlap};
+  const bool above = j.contains("above"), below = j.contains("below"), on = j.contains("on");
+  const bool squeezed = j.contains("squeezed");
+  const int kinds = int{center} + int{moved} + int{bounds} + int{at_rest} + int{no_overlap} +
+                    int{above} + int{below} + int{on} + int{squeezed};
   if (kinds == 0) {
     r.problem(at,
-              "states nothing: give center or moved (with tolerance), min/max, at_rest or "
-              "no_overlap");
+              "states nothing: give center or moved (with tolerance), min/max, at_rest, "
+              "no_overlap, above, below, on or squeezed");
     return;
   }
   if (kinds > 1) {
     r.problem(at,
               "states more than one fact: give one of center, moved, min/max, at_rest, "
-              "no_overlap per entry (split it into several entries)");
+              "no_overlap, above, below, on, squeezed per entry (split it into several entries)");
     return;
   }
   Expectation e;
-  e.kind = center    ? Kind::kCenter
-           : moved   ? Kind::kMoved
-           : bounds  ? Kind::kBounds
-           : at_rest ? Kind::kAtRest
-                     : Kind::kNoOverlap;
+  e.kind = center       ? Kind::kCenter
+           : moved      ? Kind::kMoved
+           : bounds     ? Kind::kBounds
+           : at_rest    ? Kind::kAtRest
+           : no_overlap ? Kind::kNoOverlap
+           : above      ? Kind::kAbove
+           : below      ? Kind::kBelow
+           : on         ? Kind::kOn
+                        : Kind::kSqueezed;
+  const bool relation = is_relation(e.kind);
   if (no_overlap) {
     if (j.contains("body"))
       r.problem(at + ".body", "no_overlap holds for every pair of bodies: remove body");
   } else if (!j.contains("body")) {
-    r.problem(at + ".body", center ? "is required: the name of a body"
-                                   : "is required: the name of a body, or \"*\" for every "
-                                     "dynamic body");
+    r.problem(at + ".body", center || relation
+                                ? "is required: the name of a body"
+                                : "is required: the name of a body, or \"*\" for every "
+                                  "dynamic body");
   } else {
     std::string name;
     if (r.string(j["body"], at + ".body", name)) {
       if (name == "*") {
         if (center) {
           r.problem(at + ".body", "\"*\" cannot have one expected centre: name a body");
+        } else if (relation) {
+          r.problem(at + ".body",
+                    std::string("\"*\" cannot be ") + to_string(e.kind) + ": name a body");
         } else {
           e.body = Expectation::kEveryDynamic;
         }
@@ -379,11 +452,12 @@ void read_expectation(Reader& r, const json& j, const std::string& at,
     } else {
       r.number(j["tolerance"], at + ".tolerance", e.tolerance);
     }
-  } else if (j.contains("tolerance")) {
+  } else if (j.contains("tolerance") && !relation) {
     r.problem(at + ".tolerance",
-              "belongs to center and moved; min/max, at_rest and no_overlap "
-              "carry their own limit");
+              "belongs to center and moved, above, below, on and squeezed; min/max, at_rest and "
+              "no_overlap carry their own limit");
   }
+  read_relation(r, j, at, by_name, e);
   if (j.contains("min")) read_bound(r, j["min"], at + ".min", e.min_x, e.min_y);
   if (j.contains("max")) read_bound(r, j["max"], at + ".max", e.max_x, e.max_y);
   if (at_rest) r.number(j["at_rest"], at + ".at_rest", e.speed);

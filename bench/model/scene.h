@@ -27,6 +27,14 @@ struct SceneBody {
   double gravity_scale = 1.0;
   std::optional<double> friction;     // else the scene's
   std::optional<double> restitution;  // else the scene's
+  // Its life: it takes part in steps n with from_step <= n < to_step, so it exists in states
+  // from_step..to_step. It enters as center and velocity say, and leaves after step to_step - 1.
+  int from_step = 0;
+  int to_step = std::numeric_limits<int>::max();
+
+  // Whether the body exists in state k (k steps taken).
+  bool alive(int k) const { return from_step <= k && k <= to_step; }
+  bool comes_or_goes() const { return from_step > 0 || to_step != std::numeric_limits<int>::max(); }
 };
 
 // Holds the body's velocity along the axes it names at the start of every step n with
@@ -95,6 +103,8 @@ struct Scene {
   double friction_of(const SceneBody& b) const { return b.friction.value_or(friction); }
   double restitution_of(const SceneBody& b) const { return b.restitution.value_or(restitution); }
   bool has_gravity() const { return gravity.x != 0.0 || gravity.y != 0.0; }
+  // Whether some body enters after the start or leaves before the end (SceneBody::from_step).
+  bool has_lifetimes() const;
 };
 
 // Limits every scene must respect, however it was made: they keep the engines in the range where

@@ -36,6 +36,7 @@ double Box2dWorld::skin_shrink() {
 
 Box2dWorld::Box2dWorld(const Scene& scene, const Box2dSettings& settings)
     : world_(std::make_unique<b2World>(vec(scene.gravity))),
+      scene_(scene),
       drives_(scene),
       dt_(scene.dt),
       settings_(settings) {
@@ -46,42 +47,54 @@ Box2dWorld::Box2dWorld(const Scene& scene, const Box2dSettings& settings)
   world_->SetAllowSleeping(settings.sleep);
   world_->SetContinuousPhysics(settings.continuous >= 1);
   world_->SetWarmStarting(settings.warm_starting);
-  bodies_.reserve(scene.bodies.size());
-  for (const SceneBody& sb : scene.bodies) {
-    b2BodyDef def;
-    def.type = to_box2d(sb.kind);
-    def.position = vec(sb.center);
-    def.linearVelocity = sb.kind == BodyKind::kStatic ? b2Vec2(0.0f, 0.0f) : vec(sb.velocity);
-    def.fixedRotation = !scene.rotation;
-    def.allowSleep = settings.sleep;
-    def.bullet = settings.continuous >= 2 && sb.kind == BodyKind::kDynamic;
-    def.gravityScale = static_cast<float>(sb.gravity_scale);
-    b2Body* body = world_->CreateBody(&def);
-
-    // Compensation never takes a box below half its declared size (boxes under 1.5 cm).
-    const double shrink_x =
-        settings.compensate_skin ? std::min(skin_shrink(), 0.5 * sb.half_extents.x) : 0.0;
-    const double shrink_y =
-        settings.compensate_skin ? std::min(skin_shrink(), 0.5 * sb.half_extents.y) : 0.0;
-    b2PolygonShape box;
-    box.SetAsBox(static_cast<float>(sb.half_extents.x - shrink_x),
-                 static_cast<float>(sb.half_extents.y - shrink_y));
-    b2FixtureDef fixture;
-    fixture.shape = &box;
-    fixture.density = 0.0f;  // mass is set exactly below
-    fixture.friction = static_cast<float>(scene.friction_of(sb));
-    fixture.restitution = static_cast<float>(scene.restitution_of(sb));
-    body->CreateFixture(&fixture);
-    if (sb.kind == BodyKind::kDynamic) {
-      b2MassData mass;
-      mass.mass = static_cast<float>(sb.mass);
-      mass.center = b2Vec2(0.0f, 0.0f);
-      const double w = 2.0 * sb.half_extents.x, h = 2.0 * sb.half_extents.y;
-      mass.I = static_cast<float>(sb.mass * (w * w + h * h) / 12.0);
-      body->SetMassData(&mass);
-    }
-    bodies_.push_back(body);
+  bodies_.assign(scene.bodies.size(), nullptr);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].alive(0)) add_body(i);
   }
+}
+
+void Box2dWorld::add_body(std::size_t i) {
+  const Scene& scene = scene_;
+  const Box2dSettings& settings = settings_;
+  const SceneBody& sb = scene.bodies[i];
+  b2BodyDef def;
+  def.type = to_box2d(sb.kind);
+  def.position = vec(sb.center);
+  def.linearVelocity = sb.kind == BodyKind::kStatic ? b2Vec2(0.0f, 0.0f) : vec(sb.velocity);
+  def.fixedRotation = !scene.rotation;
+  def.allowSleep = settings.sleep;
+  def.bullet = settings.continuous >= 2 && sb.kind == BodyKind::kDynamic;
+  def.gravityScale = static_cast<float>(sb.gravity_scale);
+  b2Body* body = world_->CreateBody(&def);
+
+  // Compensation never takes a box below half its declared size (boxes under 1.5 cm).
+  const double shrink_x =
+      settings.compensate_skin ? std::min(skin_shrink(), 0.5 * sb.half_extents.x) : 0.0;
+  const double shrink_y =
+      settings.compensate_skin ? std::min(skin_shrink(), 0.5 * sb.half_extents.y) : 0.0;
+  b2PolygonShape box;
+  box.SetAsBox(static_cast<float>(sb.half_extents.x - shrink_x),
+               static_cast<float>(sb.half_extents.y - shrink_y));
+  b2FixtureDef fixture;
+  fixture.shape = &box;
+  fixture.density = 0.0f;  // mass is set exactly below
+  fixture.friction = static_cast<float>(scene.friction_of(sb));
+  fixture.restitution = static_cast<float>(scene.restitution_of(sb));
+  body->CreateFixture(&fixture);
+  if (sb.kind == BodyKind::kDynamic) {
+    b2MassData mass;
+    mass.mass = static_cast<float>(sb.mass);
+    mass.center = b2Vec2(0.0f, 0.0f);
+    const double w = 2.0 * sb.half_extents.x, h = 2.0 * sb.half_extents.y;
+    mass.I = static_cast<float>(sb.mass * (w * w + h * h) / 12.0);
+    body->SetMassData(&mass);
+  }
+  bodies_[i] = body;
+}
+
+void Box2dWorld::remove_body(std::size_t i) {
+  world_->DestroyBody(bodies_[i]);
+  bodies_[i] = nullptr;
 }
 
 Box2dWorld::~Box2dWorld() = default;
@@ -115,6 +128,7 @@ void Box2dWorld::read_state(std::span<Vec2d> positions, std::span<Vec2d> velocit
                             std::span<double> angles) const {
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const b2Body* b = bodies_[i];
+    if (!b) continue;
     if (!positions.empty()) positions[i] = {b->GetPosition().x, b->GetPosition().y};
     if (!velocities.empty()) velocities[i] = {b->GetLinearVelocity().x, b->GetLinearVelocity().y};
     if (!angles.empty()) angles[i] = b->GetAngle();

@@ -54,10 +54,15 @@ class Box2dWorld {
   void read_state(std::span<Vec2d> positions, std::span<Vec2d> velocities,
                   std::span<double> angles) const;
   std::size_t body_count() const { return bodies_.size(); }
+  // Scene body i enters the world as the scene describes it, or leaves it (SceneBody::from_step);
+  // the constructor adds the bodies of state 0. read_state skips a body not in the world.
+  void add_body(std::size_t i);
+  void remove_body(std::size_t i);
 
  private:
   std::unique_ptr<b2World> world_;
-  std::vector<b2Body*> bodies_;
+  const Scene& scene_;           // outlives the world
+  std::vector<b2Body*> bodies_;  // per scene body, null while it is not in the world
   DriveSchedule drives_;
   double dt_;
   Box2dSettings settings_;

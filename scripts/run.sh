@@ -41,7 +41,7 @@ say() { echo "run.sh: $* ($((SECONDS - start)) s)" >&2; }
 
 scenes=(stack pyramid many_pyramids mass_ratio_stack heavy_on_light overlap_recovery random_pile
         push_row push_into_wall push_stack squeeze seed_stack seed_squeeze seed_falling_row
-        rain smash bulldozer)
+        rain smash bulldozer spawn_rain)
 traced=(stack overlap_recovery push_stack squeeze seed_squeeze)
 # Every reference as games ship it and as it runs by default: sleeping on and off (and Box2D v3
 # where it is built), so that the report's ratios answer against each.

@@ -115,7 +115,12 @@ void ExpectationCheck::observe(int k, const BodyState& state, const BodyState* p
     const std::size_t* begin = all ? dynamic_.data() : single;
     const std::size_t* end = all ? dynamic_.data() + dynamic_.size() : single + 1;
     double sum_sq = 0.0;
+    std::size_t judged = 0;
     for (const std::size_t* b = begin; b != end; ++b) {
+      // "*" judges the bodies in the world in this state (validate() keeps a named body's window
+      // within its life).
+      if (!scene_.bodies[*b].alive(k)) continue;
+      ++judged;
       const Vec2d p = state.position[*b];
       double value = 0.0, error = 0.0;
       bool pass = true;
@@ -140,9 +145,11 @@ void ExpectationCheck::observe(int k, const BodyState& state, const BodyState* p
           break;
         case Kind::kAtRest: {
           const Vec2d v = scene_.bodies[*b].velocity;
-          const Vec2d q = previous ? previous->position[*b] : p;
+          // In the state it enters in a body has no step behind it: its speed is its own.
+          const BodyState* before = scene_.bodies[*b].alive(k - 1) ? previous : nullptr;
+          const Vec2d q = before ? before->position[*b] : p;
           value = !finite(p) ? inf
-                  : previous ? std::hypot(p.x - q.x, p.y - q.y) / scene_.dt
+                  : before   ? std::hypot(p.x - q.x, p.y - q.y) / scene_.dt
                              : std::hypot(v.x, v.y);
           error = std::max(0.0, value - e.speed);
           pass = value <= e.speed;
@@ -155,7 +162,7 @@ void ExpectationCheck::observe(int k, const BodyState& state, const BodyState* p
       sum_sq += error * error;
     }
     if (o.state == k) {  // this state is the entry's worst
-      o.bodies = static_cast<std::size_t>(end - begin);
+      o.bodies = judged;
       o.rms = o.bodies > 0 ? std::sqrt(sum_sq / static_cast<double>(o.bodies)) : 0.0;
     }
   }

@@ -54,7 +54,10 @@ PairOverlap MetricsRecorder::deepest_overlap(const Scene& scene, const BodyState
   scan.build(state, state);
   PairOverlap deepest;
   deepest.step = step;
+  const bool lifetimes = scene.has_lifetimes();
   scan.for_each_pair([&](std::size_t i, std::size_t j) {
+    // A body that is not in the world in this state overlaps nothing.
+    if (lifetimes && (!scene.bodies[i].alive(step) || !scene.bodies[j].alive(step))) return;
     const double d = scan.depth(state, i, j);
     if (d > deepest.depth ||
         (d == deepest.depth && d > 0.0 && pair_key(i, j) < pair_key(deepest.a, deepest.b)))

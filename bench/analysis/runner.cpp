@@ -1,6 +1,8 @@
 #include "runner.h"
 
+#include "input_error.h"
 #include "isolated_run.h"
+#include "lifetimes.h"
 #include "state_feed.h"
 
 #include <algorithm>
@@ -68,12 +70,21 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
   const double setup_ms = ms_since(t0);
 
   const std::size_t n = scene.bodies.size();
+  const Lifetimes lives(scene);
+  if (lives.any() && !options.observers.empty()) {
+    throw InputError("scene " + scene.name +
+                     ": its bodies come and go (from_step, to_step), which traces and replay "
+                     "pages do not follow yet");
+  }
   // Metrics and traces look at every step; expectations only at the states they name.
   const bool observed = !options.observers.empty();
-  const bool every_step = options.metrics.any() || observed;
+  // The step metrics judge every body in every state: not yet measured where bodies come and go
+  // (docs/scene-format.md §2); expectations still are.
+  const MetricSelection metrics = lives.any() ? MetricSelection::none() : options.metrics;
+  const bool every_step = metrics.any() || observed;
   ExpectationCheck expect(scene);
   std::optional<MetricsRecorder> recorder;
-  if (every_step) recorder.emplace(scene, options.metrics);
+  if (every_step) recorder.emplace(scene, metrics);
   StateFeed feed(*engine, n);
   int before_state = -1;  // the state last read (feed.before() after the next read), -1: none
   auto check = [&](int k, const BodyState& state, const PairOverlap* deepest) {
@@ -106,7 +117,11 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
       break;
     }
     const auto s0 = Clock::now();
+    // Bodies leave before their to_step and enter after the step before their from_step, so
+    // that state from_step shows them as the scene describes them; both in the step's time.
+    lives.leave(*engine, step);
     engine->step(step);
+    lives.enter(*engine, step + 1);
     const double ms = ms_since(s0);
     // The first step pays for warming caches and buffers: timed apart, and counted only when the
     // run has no other (a cold figure says more than none).
@@ -164,7 +179,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
   run.hash = position_hash(run.final_positions);
   if (samples.empty() && steps_taken > 0) samples.push_back(first_ms);
   run.timing = summarize_steps(std::move(samples), setup_ms);
-  if (options.metrics.any()) {
+  if (metrics.any()) {
     run.metrics = recorder->result(last);
     run.metrics_computed = true;
   }

@@ -46,6 +46,16 @@ const std::vector<Family>& benchmark_families() {
       moving.others_max = 20'000;
       f.push_back(moving);
     }
+    // Bodies that come and go: warmed up until `waves` waves are in (25 waves of 4 x cols boxes,
+    // one every 4 steps: 10,000 boxes at cols=100), then timed over 60 steps in which 15 waves
+    // enter and 15 leave.
+    Family spawn{
+        "spawn_rain", "spawn_rain", {"cols"}, {100, 1'000}, {"waves=25", "period=4", "height=4"},
+        100};
+    spawn.window = 60;
+    spawn.moving = true;
+    spawn.others_max = 20'000;
+    f.push_back(spawn);
     return f;
   }();
   return families;

@@ -43,6 +43,7 @@ std::string capabilities(const EngineSpec& spec) {
   add(c.restitution, "restitution");
   add(c.kinematic, "kinematic bodies");
   add(c.axis_drives, "per-axis drives");
+  add(c.lifetimes, "bodies that come and go");
   return s.empty() ? "none of rotation, friction, restitution, kinematic bodies, per-axis drives"
                    : s;
 }

@@ -60,7 +60,8 @@ std::string version() {
 class Box2d3Engine final : public Engine {
  public:
   Box2d3Engine(const EngineSpec& spec, const Scene& scene)
-      : drives_(scene),
+      : scene_(scene),
+        drives_(scene),
         dt_(static_cast<float>(scene.dt)),
         substeps_(static_cast<int>(spec.get_int("substeps"))) {
     const int threads = static_cast<int>(spec.get_int("threads"));
@@ -87,35 +88,48 @@ class Box2d3Engine final : public Engine {
     b2World_EnableWarmStarting(world_, spec.get_int("warm") != 0);
     b2World_EnableSpeculative(world_, spec.get_int("speculative") != 0);
 
-    bodies_.reserve(scene.bodies.size());
-    shapes_.reserve(scene.bodies.size());
-    for (const SceneBody& sb : scene.bodies) {
-      b2BodyDef body = b2DefaultBodyDef();
-      body.type = to_box2d(sb.kind);
-      body.position = vec(sb.center);
-      if (sb.kind != BodyKind::kStatic) body.linearVelocity = vec(sb.velocity);
-      body.gravityScale = static_cast<float>(sb.gravity_scale);
-      body.fixedRotation = !scene.rotation;
-      body.enableSleep = sleep;
-      body.isBullet = ccd >= 2 && sb.kind == BodyKind::kDynamic;
-      const b2BodyId id = b2CreateBody(world_, &body);
-
-      b2ShapeDef shape = b2DefaultShapeDef();
-      shape.material.friction = static_cast<float>(scene.friction_of(sb));
-      shape.material.restitution = static_cast<float>(scene.restitution_of(sb));
-      shape.updateBodyMass = false;  // set exactly below
-      const b2Polygon box =
-          b2MakeBox(static_cast<float>(sb.half_extents.x), static_cast<float>(sb.half_extents.y));
-      shapes_.push_back(b2CreatePolygonShape(id, &shape, &box));
-      if (sb.kind == BodyKind::kDynamic) {
-        // Without rotation the inertia stays 0, which is what keeps v3 from turning the body.
-        const double w = 2.0 * sb.half_extents.x, h = 2.0 * sb.half_extents.y;
-        const double inertia = scene.rotation ? sb.mass * (w * w + h * h) / 12.0 : 0.0;
-        b2Body_SetMassData(
-            id, b2MassData{static_cast<float>(sb.mass), {0.0f, 0.0f}, static_cast<float>(inertia)});
-      }
-      bodies_.push_back(id);
+    sleep_ = sleep;
+    bullets_ = ccd >= 2;
+    bodies_.assign(scene.bodies.size(), b2_nullBodyId);
+    shapes_.assign(scene.bodies.size(), b2_nullShapeId);
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      if (scene.bodies[i].alive(0)) add_body(i);
     }
+  }
+
+  void add_body(std::size_t i) override {
+    const SceneBody& sb = scene_.bodies[i];
+    b2BodyDef body = b2DefaultBodyDef();
+    body.type = to_box2d(sb.kind);
+    body.position = vec(sb.center);
+    if (sb.kind != BodyKind::kStatic) body.linearVelocity = vec(sb.velocity);
+    body.gravityScale = static_cast<float>(sb.gravity_scale);
+    body.fixedRotation = !scene_.rotation;
+    body.enableSleep = sleep_;
+    body.isBullet = bullets_ && sb.kind == BodyKind::kDynamic;
+    const b2BodyId id = b2CreateBody(world_, &body);
+
+    b2ShapeDef shape = b2DefaultShapeDef();
+    shape.material.friction = static_cast<float>(scene_.friction_of(sb));
+    shape.material.restitution = static_cast<float>(scene_.restitution_of(sb));
+    shape.updateBodyMass = false;  // set exactly below
+    const b2Polygon box =
+        b2MakeBox(static_cast<float>(sb.half_extents.x), static_cast<float>(sb.half_extents.y));
+    shapes_[i] = b2CreatePolygonShape(id, &shape, &box);
+    if (sb.kind == BodyKind::kDynamic) {
+      // Without rotation the inertia stays 0, which is what keeps v3 from turning the body.
+      const double w = 2.0 * sb.half_extents.x, h = 2.0 * sb.half_extents.y;
+      const double inertia = scene_.rotation ? sb.mass * (w * w + h * h) / 12.0 : 0.0;
+      b2Body_SetMassData(
+          id, b2MassData{static_cast<float>(sb.mass), {0.0f, 0.0f}, static_cast<float>(inertia)});
+    }
+    bodies_[i] = id;
+  }
+
+  void remove_body(std::size_t i) override {
+    b2DestroyBody(bodies_[i]);  // and its shape
+    bodies_[i] = b2_nullBodyId;
+    shapes_[i] = b2_nullShapeId;
   }
 
   ~Box2d3Engine() override { b2DestroyWorld(world_); }  // before the pool it may still call
@@ -139,6 +153,7 @@ class Box2d3Engine final : public Engine {
 
   void read_state(BodyState& out) const override {
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      if (B2_IS_NULL(bodies_[i])) continue;
       const b2Vec2 p = b2Body_GetPosition(bodies_[i]), v = b2Body_GetLinearVelocity(bodies_[i]);
       out.position[i] = {p.x, p.y};
       out.velocity[i] = {v.x, v.y};
@@ -152,6 +167,7 @@ class Box2d3Engine final : public Engine {
   std::span<const double> counters() const override {
     std::size_t n = 0;
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      if (B2_IS_NULL(bodies_[i])) continue;
       const int capacity = b2Body_GetContactCapacity(bodies_[i]);
       if (capacity == 0) continue;
       if (contact_buffer_.size() < static_cast<std::size_t>(capacity))
@@ -169,7 +185,9 @@ class Box2d3Engine final : public Engine {
  private:
   std::unique_ptr<TaskPool> pool_;  // outlives the world, which calls it
   b2WorldId world_{};
-  std::vector<b2BodyId> bodies_;
+  const Scene& scene_;  // outlives the engine
+  bool sleep_ = false, bullets_ = false;
+  std::vector<b2BodyId> bodies_;   // per scene body, null while it is not in the world
   std::vector<b2ShapeId> shapes_;  // one per body, in scene order
   DriveSchedule drives_;
   float dt_;
@@ -201,7 +219,9 @@ EngineDef register_box2d3() {
                 "speculative contact points (v3's testing switch b2World_EnableSpeculative)"),
       whole_key("warm", 1, 0, 1, "warm starting"),
       number_key("max_speed", 400.0, 0.01, 1e6, "speed limit of every body, m/s")};
-  e.capabilities = [](const EngineSpec&) { return Capabilities{true, true, true, true, true}; };
+  e.capabilities = [](const EngineSpec&) {
+    return Capabilities{true, true, true, true, true, true};
+  };
   e.counters = counter_list();
   e.defaults = {"box2d3"};
   e.accurate = "box2d3:substeps=16";

@@ -28,6 +28,8 @@ class Box2dEngine final : public Engine {
  public:
   Box2dEngine(const EngineSpec& spec, const Scene& scene) : world_(scene, settings(spec)) {}
   void step(int step_index) override { world_.step(step_index); }
+  void add_body(std::size_t index) override { world_.add_body(index); }
+  void remove_body(std::size_t index) override { world_.remove_body(index); }
   void read_state(BodyState& out) const override {
     world_.read_state(out.position, out.velocity, out.angle);
   }
@@ -60,7 +62,9 @@ EngineDef register_box2d() {
                       "continuous collision: 0 off, 1 against static and kinematic bodies "
                       "(Box2D's default), 2 every dynamic body a bullet"),
             whole_key("sleep", 0, 0, 1, "bodies at rest fall asleep, as games ship it")};
-  e.capabilities = [](const EngineSpec&) { return Capabilities{true, true, true, true, true}; };
+  e.capabilities = [](const EngineSpec&) {
+    return Capabilities{true, true, true, true, true, true};
+  };
   e.counters = counter_list();
   e.defaults = {"box2d"};
   e.reference = true;

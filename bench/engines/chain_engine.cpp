@@ -60,33 +60,44 @@ const std::vector<CounterDef>& counter_list() {
 class ChainEngine final : public Engine {
  public:
   ChainEngine(const EngineSpec& spec, const Scene& scene)
-      : world_(world_def(spec, scene)), drives_(scene), dt_(scene.dt) {
-    ids_.reserve(scene.bodies.size());
-    for (const SceneBody& b : scene.bodies) {
-      chain::BodyDef def;
-      def.type = to_chain(b.kind);
-      def.center = {b.center.x, b.center.y};
-      def.half_extents = {b.half_extents.x, b.half_extents.y};
-      def.velocity = {b.velocity.x, b.velocity.y};
-      def.mass = b.mass;
-      def.gravity_scale = b.gravity_scale;
-      def.restitution = scene.restitution_of(b);
-      def.friction = scene.friction_of(b);
-      ids_.push_back(world_.create_body(def));
-      if (index_of_.size() <= ids_.back().value) index_of_.resize(ids_.back().value + 1, kNoIndex);
-      index_of_[ids_.back().value] = static_cast<std::uint32_t>(ids_.size() - 1);
+      : world_(world_def(spec, scene)), drives_(scene), dt_(scene.dt), scene_(scene) {
+    ids_.assign(scene.bodies.size(), chain::BodyId{});
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      if (scene.bodies[i].alive(0)) add_body(i);
     }
-    stored_ids_.resize(ids_.size());
     flag_.assign(ids_.size(), 0);
-    positions_.resize(ids_.size());
-    velocities_.resize(ids_.size());
+  }
+
+  void add_body(std::size_t i) override {
+    const SceneBody& b = scene_.bodies[i];
+    chain::BodyDef def;
+    def.type = to_chain(b.kind);
+    def.center = {b.center.x, b.center.y};
+    def.half_extents = {b.half_extents.x, b.half_extents.y};
+    def.velocity = {b.velocity.x, b.velocity.y};
+    def.mass = b.mass;
+    def.gravity_scale = b.gravity_scale;
+    def.restitution = scene_.restitution_of(b);
+    def.friction = scene_.friction_of(b);
+    ids_[i] = world_.create_body(def);
+    if (index_of_.size() <= ids_[i].value) index_of_.resize(ids_[i].value + 1, kNoIndex);
+    index_of_[ids_[i].value] = static_cast<std::uint32_t>(i);
+    reread_ = true;
+  }
+
+  void remove_body(std::size_t i) override {
+    world_.destroy_body(ids_[i]);
+    ids_[i] = chain::BodyId{};
+    reread_ = true;
   }
 
   void step(int step_index) override {
     // A drive persists in the solver until cleared: release the bodies whose drivers ended.
     drives_.advance(step_index);
-    for (const std::size_t b : drives_.released())
-      world_.clear_drive(ids_[b]);
+    for (const std::size_t b : drives_.released()) {
+      // A drive that ends as its body leaves went with the body.
+      if (ids_[b] != chain::BodyId{}) world_.clear_drive(ids_[b]);
+    }
     for (const Drive& d : drives_.active()) {
       const chain::DriveAxes axes = d.hold_x && d.hold_y ? chain::DriveAxes::kBoth
                                     : d.hold_x           ? chain::DriveAxes::kX
@@ -100,7 +111,12 @@ class ChainEngine final : public Engine {
     // In the world's storage order, which differs from the scene's: each body's state is read
     // once in a pass through memory and written to its scene index. Looking every scene index's
     // body up instead (read_state) costs a cache miss per body in a world beyond the cache.
+    const std::size_t held = world_.body_count();
+    stored_ids_.resize(held);
+    positions_.resize(held);
+    velocities_.resize(held);
     world_.read_all(stored_ids_, positions_, velocities_);
+    reread_ = false;
     for (std::size_t k = 0; k < stored_ids_.size(); ++k) {
       const std::uint32_t i = index_of_[stored_ids_[k].value];
       out.position[i] = {positions_[k].x, positions_[k].y};
@@ -113,6 +129,8 @@ class ChainEngine final : public Engine {
   // now and then) is compared with `state` instead. Only the bodies whose state differs are
   // written and listed.
   bool read_changes(BodyState& state, std::vector<std::uint32_t>& changed) const override {
+    // The copy lists the bodies of the last read: after an add or a remove, read all again.
+    if (reread_) return false;
     world_.update_all(stored_ids_, positions_, velocities_, slots_);
     changed.clear();
     for (const std::uint32_t k : slots_) {
@@ -172,6 +190,8 @@ class ChainEngine final : public Engine {
   mutable std::vector<std::uint32_t> slots_;
   mutable std::vector<std::uint8_t> flag_;  // per scene index, zero between reads
   mutable std::vector<EngineEvent> events_;
+  const Scene& scene_;          // outlives the engine
+  mutable bool reread_ = true;  // bodies came or went since the last read_all
 };
 
 }  // namespace
@@ -197,6 +217,7 @@ EngineDef register_chain() {
     Capabilities c;
     c.kinematic = true;
     c.axis_drives = true;
+    c.lifetimes = true;
     c.friction = spec.get("variant") == "modern";         // the 2014 engine had none
     c.restitution = spec.get("velocity") == "inelastic";  // the zero rule stops, never bounces
     return c;

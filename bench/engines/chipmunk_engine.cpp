@@ -89,7 +89,8 @@ class ChipmunkEngine final : public Engine {
         drives_(scene),
         dt_(scene.dt / static_cast<double>(spec.get_int("substeps"))),
         substeps_(static_cast<int>(spec.get_int("substeps"))),
-        gravity_scale_(scene.bodies.size(), 1.0) {
+        gravity_scale_(scene.bodies.size(), 1.0),
+        scene_(scene) {
     cpSpace* space = space_.get();
     cpSpaceSetGravity(space, cpv(scene.gravity.x, scene.gravity.y));
     cpSpaceSetIterations(space, static_cast<int>(spec.get_int("iterations")));
@@ -98,36 +99,53 @@ class ChipmunkEngine final : public Engine {
     cpSpaceSetCollisionBias(space, spec.get_number("bias"));
     if (spec.get_int("sleep") != 0) cpSpaceSetSleepTimeThreshold(space, 0.5);
     cpSpaceAddDefaultCollisionHandler(space)->preSolveFunc = combine;
-    const double grow = spec.get("skin") == "compensate" ? 0.5 * slop : 0.0;
-    bodies_.reserve(scene.bodies.size());
+    grow_ = spec.get("skin") == "compensate" ? 0.5 * slop : 0.0;
+    bodies_.assign(scene.bodies.size(), nullptr);
+    shapes_.assign(scene.bodies.size(), nullptr);
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-      const SceneBody& b = scene.bodies[i];
-      const double w = 2.0 * b.half_extents.x, h = 2.0 * b.half_extents.y;
-      cpBody* body = nullptr;
-      switch (b.kind) {
-        case BodyKind::kStatic:
-          body = cpBodyNewStatic();
-          break;
-        case BodyKind::kKinematic:
-          body = cpBodyNewKinematic();
-          break;
-        case BodyKind::kDynamic:
-          body = cpBodyNew(b.mass, scene.rotation ? cpMomentForBox(b.mass, w, h) : INFINITY);
-          gravity_scale_[i] = b.gravity_scale;
-          cpBodySetUserData(body, &gravity_scale_[i]);
-          cpBodySetVelocityUpdateFunc(body, scaled_gravity);
-          break;
-      }
-      cpSpaceAddBody(space, body);
-      cpBodySetPosition(body, cpv(b.center.x, b.center.y));
-      if (b.kind != BodyKind::kStatic) cpBodySetVelocity(body, cpv(b.velocity.x, b.velocity.y));
-      const double gx = b.half_extents.x + grow, gy = b.half_extents.y + grow;
-      cpShape* shape = cpSpaceAddShape(space, cpBoxShapeNew2(body, cpBBNew(-gx, -gy, gx, gy), 0.0));
-      cpShapeSetFriction(shape, scene.friction_of(b));
-      cpShapeSetElasticity(shape, scene.restitution_of(b));
-      if (b.kind == BodyKind::kStatic) cpSpaceReindexShapesForBody(space, body);
-      bodies_.push_back(body);
+      if (scene.bodies[i].alive(0)) add_body(i);
     }
+  }
+
+  void add_body(std::size_t i) override {
+    cpSpace* space = space_.get();
+    const SceneBody& b = scene_.bodies[i];
+    const double w = 2.0 * b.half_extents.x, h = 2.0 * b.half_extents.y;
+    cpBody* body = nullptr;
+    switch (b.kind) {
+      case BodyKind::kStatic:
+        body = cpBodyNewStatic();
+        break;
+      case BodyKind::kKinematic:
+        body = cpBodyNewKinematic();
+        break;
+      case BodyKind::kDynamic:
+        body = cpBodyNew(b.mass, scene_.rotation ? cpMomentForBox(b.mass, w, h) : INFINITY);
+        gravity_scale_[i] = b.gravity_scale;
+        cpBodySetUserData(body, &gravity_scale_[i]);
+        cpBodySetVelocityUpdateFunc(body, scaled_gravity);
+        break;
+    }
+    cpSpaceAddBody(space, body);
+    cpBodySetPosition(body, cpv(b.center.x, b.center.y));
+    if (b.kind != BodyKind::kStatic) cpBodySetVelocity(body, cpv(b.velocity.x, b.velocity.y));
+    const double gx = b.half_extents.x + grow_, gy = b.half_extents.y + grow_;
+    cpShape* shape = cpSpaceAddShape(space, cpBoxShapeNew2(body, cpBBNew(-gx, -gy, gx, gy), 0.0));
+    cpShapeSetFriction(shape, scene_.friction_of(b));
+    cpShapeSetElasticity(shape, scene_.restitution_of(b));
+    if (b.kind == BodyKind::kStatic) cpSpaceReindexShapesForBody(space, body);
+    bodies_[i] = body;
+    shapes_[i] = shape;
+  }
+
+  void remove_body(std::size_t i) override {
+    cpSpace* space = space_.get();
+    cpSpaceRemoveShape(space, shapes_[i]);
+    cpSpaceRemoveBody(space, bodies_[i]);
+    cpShapeFree(shapes_[i]);
+    cpBodyFree(bodies_[i]);
+    bodies_[i] = nullptr;
+    shapes_[i] = nullptr;
   }
 
   void step(int step_index) override {
@@ -146,6 +164,7 @@ class ChipmunkEngine final : public Engine {
 
   void read_state(BodyState& out) const override {
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
+      if (!bodies_[i]) continue;
       const cpVect p = cpBodyGetPosition(bodies_[i]), v = cpBodyGetVelocity(bodies_[i]);
       out.position[i] = {p.x, p.y};
       out.velocity[i] = {v.x, v.y};
@@ -160,7 +179,7 @@ class ChipmunkEngine final : public Engine {
   std::span<const double> counters() const override {
     std::size_t n = 0;
     for (cpBody* body : bodies_) {
-      if (cpBodyGetType(body) != CP_BODY_TYPE_DYNAMIC) continue;
+      if (!body || cpBodyGetType(body) != CP_BODY_TYPE_DYNAMIC) continue;
       cpBodyEachArbiter(
           body,
           [](cpBody* self, cpArbiter* arb, void* count) {
@@ -177,11 +196,14 @@ class ChipmunkEngine final : public Engine {
 
  private:
   std::unique_ptr<cpSpace, SpaceDeleter> space_;
-  std::vector<cpBody*> bodies_;
+  std::vector<cpBody*> bodies_;  // per scene body, null while it is not in the space
   DriveSchedule drives_;
   double dt_;
   int substeps_;
   std::vector<double> gravity_scale_;  // per body; dynamic bodies point their user data here
+  const Scene& scene_;
+  double grow_ = 0.0;             // what skin compensation adds to each half extent
+  std::vector<cpShape*> shapes_;  // per scene body, null while it is not in the space
   mutable double contacts_ = 0.0;
 };
 
@@ -200,7 +222,9 @@ EngineDef register_chipmunk() {
       choice_key("skin", "compensate", {"compensate", "raw"},
                  "compensate: shapes built slop/2 larger per side so boxes rest at their faces"),
       whole_key("sleep", 0, 0, 1, "bodies at rest fall asleep, as games ship it")};
-  e.capabilities = [](const EngineSpec&) { return Capabilities{true, true, true, true, true}; };
+  e.capabilities = [](const EngineSpec&) {
+    return Capabilities{true, true, true, true, true, true};
+  };
   e.counters = counter_list();
   e.caveat =
       "Debian's Chipmunk 7 is built with its debug checks on, so its times overstate what a "

@@ -49,7 +49,14 @@ class Engine {
   // Applies the drives the scene holds at step `step_index` (DriveSchedule), then advances one
   // scene step.
   virtual void step(int step_index) = 0;
+  // Writes every body in the world; the entries of bodies not in it are left as they were.
   virtual void read_state(BodyState& out) const = 0;
+  // Bodies that come and go (SceneBody::from_step): an engine is built with the bodies of state 0;
+  // the runner adds body `index` after step from_step - 1 (before state from_step is read) and
+  // removes it before step to_step, both in the timed step (a game pays for them), in scene order.
+  // An added body is as the scene describes it (centre, velocity).
+  virtual void add_body(std::size_t index) = 0;
+  virtual void remove_body(std::size_t index) = 0;
   // Where the engine can tell what changed: brings `state`, which holds what this engine's last
   // read_state() or read_changes() wrote, up to its state now, lists in `changed` (ascending)
   // every body whose position, velocity or angle differs, and returns true. The default returns

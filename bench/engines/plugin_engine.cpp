@@ -20,6 +20,7 @@
 #include <memory>
 #include <mutex>
 #include <set>
+#include <stdexcept>
 
 namespace chainbench {
 namespace {
@@ -247,6 +248,11 @@ class PluginEngine final : public Engine {
     return counters_;
   }
   bool degraded() const override { return degraded_; }
+  // Never called: plugins lack Capabilities::lifetimes, so such scenes are refused before.
+  void add_body(std::size_t) override { throw std::logic_error("plugin: no add_body in ABI 1"); }
+  void remove_body(std::size_t) override {
+    throw std::logic_error("plugin: no remove_body in ABI 1");
+  }
 
  private:
   const Plugin& plugin_;
@@ -281,6 +287,7 @@ EngineDef register_plugin() {
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
     return std::make_unique<PluginEngine>(spec, scene);
   };
+  // No add or remove in ABI 1: missing_capability refuses scenes whose bodies come and go.
   return e;
 }
 

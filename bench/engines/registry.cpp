@@ -96,6 +96,12 @@ std::string missing_capability(const EngineSpec& spec, const Scene& scene) {
     if (!can.kinematic && b.kind == BodyKind::kKinematic) {
       return who + " has no kinematic bodies, and " + at + " is one";
     }
+    if (!can.lifetimes && b.comes_or_goes()) {
+      return who + " cannot add or remove bodies during a run (plugin ABI " +
+             "1 has no add or remove), and " + at + " " +
+             (b.from_step > 0 ? "enters at step " + std::to_string(b.from_step)
+                              : "leaves at step " + std::to_string(b.to_step));
+    }
   }
   for (std::size_t i = 0; i < scene.drivers.size(); ++i) {
     const Driver& d = scene.drivers[i];

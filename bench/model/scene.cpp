@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <unordered_set>
 
 namespace chainbench {
@@ -33,6 +34,12 @@ class Checker {
   }
   std::vector<SceneIssue> issues;
 };
+
+std::string life_text(const SceneBody& b) {
+  return b.to_step == std::numeric_limits<int>::max()
+             ? "from state " + std::to_string(b.from_step)
+             : "in states " + std::to_string(b.from_step) + ".." + std::to_string(b.to_step);
+}
 
 void check_expectation(Checker& c, const Scene& s, std::size_t i) {
   namespace L = limits;
@@ -133,6 +140,17 @@ void check_expectation(Checker& c, const Scene& s, std::size_t i) {
     c.add(at + ".to_step", "must be >= from_step (" + std::to_string(*e.from_step) + "), got " +
                                std::to_string(*e.to_step));
   }
+  // A named body is judged only in states it exists in: a window reaching outside its life
+  // would judge a body that is not there.
+  if (e.kind != Kind::kNoOverlap && !every && e.body < s.bodies.size()) {
+    const SceneBody& b = s.bodies[e.body];
+    const int first = e.first_state(s.steps), last = e.last_state(s.steps);
+    if (first < b.from_step || last > b.to_step) {
+      c.add(at + (first < b.from_step ? ".from_step" : ".to_step"),
+            "checks states " + std::to_string(first) + ".." + std::to_string(last) +
+                ", outside the life of body \"" + b.name + "\" (it exists " + life_text(b) + ")");
+    }
+  }
 }
 
 }  // namespace
@@ -187,6 +205,12 @@ std::vector<SceneIssue> validate(const Scene& s) {
     if (b.penetration_tolerance)
       c.positive_within(at + ".penetration_tolerance", *b.penetration_tolerance, L::kMaxHalfExtent,
                         "> 0 and <= 1e6 m");
+    if (b.from_step < 0 || b.from_step > L::kMaxSteps)
+      c.add(at + ".from_step", "must be in [0, 10000000], got " + std::to_string(b.from_step));
+    if (b.to_step <= b.from_step)
+      c.add(at + ".to_step", "must be > from_step (" + std::to_string(b.from_step) +
+                                 "): the body takes part in steps from_step..to_step - 1, got " +
+                                 std::to_string(b.to_step));
   }
   for (std::size_t i = 0; i < s.drivers.size() && i < L::kMaxDrivers; ++i) {
     const Driver& d = s.drivers[i];
@@ -204,6 +228,16 @@ std::vector<SceneIssue> validate(const Scene& s) {
       c.add(at + ".from_step", "must be >= 0, got " + std::to_string(d.from_step));
     if (d.to_step < d.from_step)
       c.add(at + ".to_step", "must be >= from_step, got " + std::to_string(d.to_step));
+    // A drive outside its body's life would set the velocity of a body that is not there.
+    if (d.body < s.bodies.size() && d.to_step > d.from_step) {
+      const SceneBody& b = s.bodies[d.body];
+      const int last = std::min(d.to_step, s.steps);
+      if (d.from_step < b.from_step || (last > b.to_step && d.from_step < s.steps)) {
+        c.add(at + (d.from_step < b.from_step ? ".from_step" : ".to_step"),
+              "drives steps " + std::to_string(d.from_step) + ".." + std::to_string(last - 1) +
+                  ", outside the life of body \"" + b.name + "\" (it exists " + life_text(b) + ")");
+      }
+    }
   }
   for (std::size_t i = 0; i < s.expect.size() && i < L::kMaxExpectations; ++i)
     check_expectation(c, s, i);
@@ -212,6 +246,11 @@ std::vector<SceneIssue> validate(const Scene& s) {
                       "> 0 and <= 1e6 m");
   }
   return c.issues;
+}
+
+bool Scene::has_lifetimes() const {
+  return std::any_of(bodies.begin(), bodies.end(),
+                     [](const SceneBody& b) { return b.comes_or_goes(); });
 }
 
 Extent initial_extent(const Scene& s) {

@@ -30,6 +30,14 @@ struct SceneBody {
   // What another box may overlap this one, m, before the run is `penetrating`; see
   // pair_penetration_tolerance(). (Initialised so that brace lists of the fields above stay whole.)
   std::optional<double> penetration_tolerance = std::nullopt;
+  // Its life: it takes part in steps n with from_step <= n < to_step, so it exists in states
+  // from_step..to_step. It enters as center and velocity say, and leaves after step to_step - 1.
+  int from_step = 0;
+  int to_step = std::numeric_limits<int>::max();
+
+  // Whether the body exists in state k (k steps taken).
+  bool alive(int k) const { return from_step <= k && k <= to_step; }
+  bool comes_or_goes() const { return from_step > 0 || to_step != std::numeric_limits<int>::max(); }
 };
 
 // Holds the body's velocity along the axes it names at the start of every step n with
@@ -115,6 +123,8 @@ struct Scene {
   // pair keeps both), else the scene's, else 0.1 x the smallest of the two boxes' half extents.
   double pair_penetration_tolerance(std::size_t i, std::size_t j) const;
   bool has_gravity() const { return gravity.x != 0.0 || gravity.y != 0.0; }
+  // Whether some body enters after the start or leaves before the end (SceneBody::from_step).
+  bool has_lifetimes() const;
 };
 
 // Limits every scene must respect, however it was made: they keep the engines in the range where

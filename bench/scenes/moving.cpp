@@ -334,6 +334,8 @@ std::size_t bulldozer_count(const SceneParams& p) {
 
 }  // namespace
 
+SceneRecipe spawn_rain_recipe();  // spawn_rain.cpp
+
 std::vector<SceneRecipe> moving_scenes() {
   return {
       {"rain",
@@ -371,6 +373,7 @@ std::vector<SceneRecipe> moving_scenes() {
        bulldozer,
        bulldozer_count,
        120},
+      spawn_rain_recipe(),
   };
 }
 

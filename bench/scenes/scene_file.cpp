@@ -250,7 +250,7 @@ void read_body(Reader& r, const json& j, const std::string& at, std::size_t inde
   }
   r.only_keys(j, at,
               {"name", "type", "center", "half_extents", "mass", "density", "velocity", "friction",
-               "restitution", "gravity_scale", "penetration_tolerance"});
+               "restitution", "gravity_scale", "penetration_tolerance", "from_step", "to_step"});
   b.name = "body" + std::to_string(index);
   if (j.contains("name")) r.string(j["name"], at + ".name", b.name);
   std::string type;
@@ -275,6 +275,10 @@ void read_body(Reader& r, const json& j, const std::string& at, std::size_t inde
   if (j.contains("velocity")) r.vec2(j["velocity"], at + ".velocity", b.velocity);
   if (j.contains("gravity_scale"))
     r.number(j["gravity_scale"], at + ".gravity_scale", b.gravity_scale);
+  if (j.contains("from_step"))
+    r.integer(j["from_step"], at + ".from_step", 0, limits::kMaxSteps, b.from_step);
+  if (j.contains("to_step"))
+    r.integer(j["to_step"], at + ".to_step", 1, limits::kMaxSteps, b.to_step);
   double v = 0.0;
   if (j.contains("friction") && r.number(j["friction"], at + ".friction", v)) b.friction = v;
   if (j.contains("restitution") && r.number(j["restitution"], at + ".restitution", v))

@@ -117,7 +117,8 @@ static int step(cb_world* w, char* error, size_t error_size) {
     const char* mark = getenv("CHAINBENCH_TEST_HANG_MARK");
     FILE* f = mark ? fopen(mark, "w") : NULL;
     if (f) fclose(f);
-    for (;;) pause();
+    for (;;)
+      pause();
   }
   for (i = 0; i < w->count; ++i) {
     cb_body* b = &w->bodies[i];

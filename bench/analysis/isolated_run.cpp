@@ -55,7 +55,8 @@ class Reader {
     const auto n = pod<std::uint64_t>();
     if (n > (in_.size() - at_) / sizeof(T)) throw std::runtime_error("a child's result is cut");
     std::vector<T> v(n);
-    std::memcpy(v.data(), take(n * sizeof(T)), n * sizeof(T));
+    const char* bytes = take(n * sizeof(T));
+    if (n > 0) std::memcpy(v.data(), bytes, n * sizeof(T));  // an empty vector's data() may be null
     return v;
   }
 

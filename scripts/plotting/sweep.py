@@ -45,6 +45,17 @@ def scene_title(scene):
     return scene["name"] + (f" ({vary[0]}={vary[1]})" if vary else "")
 
 
+def unique_stem(base, stems):
+    """base, or base_2, base_3... the first not in stems (lower case: some file systems ignore
+    case); added to stems."""
+    stem, n = base, 1
+    while stem.lower() in stems:
+        n += 1
+        stem = f"{base}_{n}"
+    stems.add(stem.lower())
+    return stem
+
+
 def plot_sweep(path, scenes, out_dir, svg):
     """Per scene: final-position RMS error against ms/step, log-log, one series per engine, each
     point labelled with the settings its label shows, the Pareto front as a step line and the reference
@@ -105,13 +116,7 @@ def plot_sweep(path, scenes, out_dir, svg):
         ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1), fontsize=8, title="engine (points)")
         note_below(ax, notes)
         place_labels(ax, sorted(labels))
-        stem = base = f"sweep_{file_stem(name)}"
-        n = 1
-        while stem.lower() in stems:
-            n += 1
-            stem = f"{base}_{n}"
-        stems.add(stem.lower())
-        save(fig, out_dir, stem, svg)
+        save(fig, out_dir, unique_stem(f"sweep_{file_stem(name)}", stems), svg)
     plot_varied(scenes, out_dir, svg, stems)
 
 
@@ -163,10 +168,4 @@ def plot_varied(scenes, out_dir, svg, stems):
         if len(positive) < sum(len(s["usable"]) for s in members):
             notes.append(f"hollow markers: error 0, drawn at {floor:g} m (a log axis has no 0)")
         note_below(ax, notes)
-        stem = base = f"sweep_{file_stem(name)}_by_{file_stem(key)}"
-        n = 1
-        while stem.lower() in stems:
-            n += 1
-            stem = f"{base}_{n}"
-        stems.add(stem.lower())
-        save(fig, out_dir, stem, svg)
+        save(fig, out_dir, unique_stem(f"sweep_{file_stem(name)}_by_{file_stem(key)}", stems), svg)

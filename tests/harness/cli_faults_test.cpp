@@ -1,6 +1,8 @@
 // The chainbench command under faults: outputs written whole or not at all, outputs that would
 // replace an input, Ctrl-C, a standard output that cannot be written, and plugins that crash,
 // abort, hang or exit in the middle of a run.
+#include "cli_run.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -23,26 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status;
-  std::string out;  // stdout and stderr
-};
-
-Result shell(const std::string& cmd) {
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  Result r{0, {}};
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), buf.size(), pipe))
-    r.out += buf.data();
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
-
-Result chainbench(const std::string& args) {
-  return shell(std::string(CHAINBENCH_EXE) + " " + args + " 2>&1");
-}
+using cli::chainbench;
+using cli::Result;
 
 // A folder of this test's own, emptied.
 std::string folder(const std::string& name) {
@@ -134,8 +118,8 @@ const std::string kScene = "--scene stack --set n=2 --set steps=60";
 
 // A table sent to a full disk is a failure, not an exit 0 with nothing shown.
 TEST(CliFaults, AStandardOutputThatCannotBeWrittenIsAnError) {
-  const Result r = shell(std::string(CHAINBENCH_EXE) + " run " + kScene +
-                         " --engines chain --reference none 2>&1 >/dev/full");
+  const Result r = cli::run_command(std::string(CHAINBENCH_EXE) + " run " + kScene +
+                                    " --engines chain --reference none 2>&1 >/dev/full");
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("cannot write standard output"), std::string::npos) << r.out;
 }

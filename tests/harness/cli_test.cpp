@@ -1,4 +1,6 @@
 // The chainbench command end to end: exit statuses, messages, and the JSON of `run`.
+#include "cli_run.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -14,26 +16,9 @@
 
 namespace {
 
-struct Result {
-  int status;
-  std::string out;  // stdout and stderr
-};
-
-Result run_command(const std::string& cmd) {
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  Result r{0, {}};
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), buf.size(), pipe))
-    r.out += buf.data();
-  const int raw = pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
-
-Result chainbench(const std::string& args) {
-  return run_command(std::string(CHAINBENCH_EXE) + " " + args + " 2>&1");
-}
+using cli::chainbench;
+using cli::Result;
+using cli::run_command;
 
 // The same with stdout and stderr a terminal (script(1)), as a user at one sees it.
 Result chainbench_in_terminal(const std::string& args) {

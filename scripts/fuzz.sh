@@ -1,38 +1,73 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with clang (preset "fuzz": ASan + UBSan) and runs each for a fixed
-# time, starting from tests/fuzz/corpus/<target>/. Prints executions per target; exits 1 if any
-# target found a crash, a hang or a leak (the reproducer is in build-fuzz/artifacts/<target>/:
-# add it to tests/fuzz/corpus/<target>/ with the fix, and every build replays it from then on).
-#   scripts/fuzz.sh [SECONDS_PER_TARGET]      default 60
+# Runs the libFuzzer targets (tests/fuzz/): world (the solver), scene_file (the scene loader),
+# plugin (what a plugin hands back), each from its corpus in tests/fuzz/corpus/<target>/.
+#
+#   scripts/fuzz.sh [SECONDS] [TARGET...]     each target for SECONDS (default 60), built with
+#                                             ASan + UBSan (preset "fuzz"): what CI runs
+#   scripts/fuzz.sh --runs N [TARGET...]      a campaign: N executions per target, built for
+#                                             coverage only (preset "fuzz-fast", several times the
+#                                             throughput), then every input the campaign kept
+#                                             replayed once under ASan + UBSan
+#
+# Prints a table: executions, rate, coverage (libFuzzer's cov: edges), corpus, result. Exits 1 if
+# a target found a crash, a hang or a leak: the reproducer is in build-fuzz*/artifacts/<target>/;
+# add it to tests/fuzz/corpus/<target>/ with the fix, and every build replays it from then on.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-seconds=${1:-60}
-if ! [[ "$seconds" =~ ^[0-9]+$ ]] || [[ "$seconds" -lt 1 ]]; then
-  echo "usage: $0 [SECONDS_PER_TARGET]   (a whole number of seconds, at least 1)" >&2
+usage() {
+  echo "usage: $0 [SECONDS] [TARGET...]   or   $0 --runs N [TARGET...]" >&2
+  echo "  SECONDS, N: whole numbers, at least 1; TARGET: world, scene_file or plugin" >&2
   exit 2
+}
+runs=""
+seconds=60
+if [[ "${1:-}" == "--runs" ]]; then
+  [[ $# -ge 2 && "$2" =~ ^[0-9]+$ && "$2" -ge 1 ]] || usage
+  runs=$2
+  shift 2
+elif [[ "${1:-}" =~ ^[0-9]+$ ]]; then
+  seconds=$1
+  [[ "$seconds" -ge 1 ]] || usage
+  shift
 fi
+all=(world scene_file plugin)
+targets=("$@")
+[[ ${#targets[@]} -eq 0 ]] && targets=("${all[@]}")
+for t in "${targets[@]}"; do
+  [[ " ${all[*]} " == *" $t "* ]] || { echo "fuzz.sh: no target \"$t\"" >&2; usage; }
+done
+fuzz_names=("${targets[@]/#/fuzz_}")
 
 scripts/deps.sh fuzz
-cmake --preset fuzz
-# The targets alone: the rest of the tree (the chainbench command, the plugins) is not fuzzed here.
-cmake --build --preset fuzz --target fuzz_world fuzz_scene_file
+# The targets alone: the rest of the tree (the chainbench command, the plugins) is not fuzzed.
+cmake --preset fuzz > /dev/null
+cmake --build --preset fuzz --target "${fuzz_names[@]}"
+if [[ -n "$runs" ]]; then
+  cmake --preset fuzz-fast > /dev/null
+  cmake --build --preset fuzz-fast --target "${fuzz_names[@]}"
+  build=build-fuzz-fast
+  budget=(-runs="$runs")
+else
+  build=build-fuzz
+  budget=(-max_total_time="$seconds")
+fi
 
 status=0
 summary=()
-for target in world scene_file; do
+for target in "${targets[@]}"; do
   work=build-fuzz/corpus/$target
-  artifacts=build-fuzz/artifacts/$target/
+  artifacts=$build/artifacts/$target/
   mkdir -p "$work" "$artifacts"
-  log=build-fuzz/fuzz_$target.log
-  echo "fuzz.sh: fuzz_$target for $seconds s (log: $log)" >&2
+  log=$build/fuzz_$target.log
+  echo "fuzz.sh: fuzz_$target, ${runs:+$runs executions}${runs:-$seconds s} (log: $log)" >&2
   began=$SECONDS
   result=ok
   dict=()
   [[ -f tests/fuzz/$target.dict ]] && dict=(-dict="tests/fuzz/$target.dict")
   # New inputs go to the scratch corpus (first directory); the checked-in seeds are only read.
-  if ! build-fuzz/bin/fuzz_$target -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-      -max_len=4096 -print_final_stats=1 -artifact_prefix="$artifacts" "${dict[@]}" \
+  if ! "$build/bin/fuzz_$target" "${budget[@]}" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
+      -print_final_stats=1 -artifact_prefix="$artifacts" "${dict[@]}" \
       "$work" "tests/fuzz/corpus/$target" > "$log" 2>&1; then
     status=1
     result="FAILED: $(ls "$artifacts" | head -n 1)"
@@ -42,9 +77,23 @@ for target in world scene_file; do
   took=$(( SECONDS - began > 0 ? SECONDS - began : 1 ))
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
   execs=${execs:-0}
+  cov=$(grep -o 'cov: [0-9]*' "$log" | tail -n 1 | cut -d' ' -f2)
   corpus=$(find "$work" -type f | wc -l)
-  summary+=("$(printf '%-16s %5d s %11d execs %9d execs/s %7d corpus inputs   %s' "fuzz_$target" \
-    "$took" "$execs" "$(( execs / took ))" "$corpus" "$result")")
+  # A campaign's throughput build has no sanitizers: what it kept is replayed with them.
+  if [[ -n "$runs" && "$result" == ok ]]; then
+    replay_log=build-fuzz/replay_$target.log
+    if ! build-fuzz/bin/fuzz_$target -runs=0 -timeout=10 -rss_limit_mb=2048 \
+        -artifact_prefix="build-fuzz/artifacts/$target/" "$work" "tests/fuzz/corpus/$target" \
+        > "$replay_log" 2>&1; then
+      status=1
+      result="FAILED under ASan + UBSan (log: $replay_log)"
+      tail -n 30 "$replay_log" >&2
+    else
+      result="ok, and ok on replay under ASan + UBSan"
+    fi
+  fi
+  summary+=("$(printf '%-16s %6d s %11d execs %7d execs/s %6s cov %6d corpus   %s' \
+    "fuzz_$target" "$took" "$execs" "$(( execs / took ))" "${cov:-?}" "$corpus" "$result")")
 done
 printf '%s\n' "${summary[@]}"
 exit $status

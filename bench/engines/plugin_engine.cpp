@@ -7,6 +7,7 @@
 // message naming the plugin (InputError: exit status 2, or an `error` verdict in stress).
 #include "drive_schedule.h"
 #include "input_error.h"
+#include "plugin_engine.h"
 #include "plugin_text.h"
 #include "registry.h"
 
@@ -49,23 +50,12 @@ std::string plugin_error(const char* error) {
   return "its message " + t.problem + ", so it is not shown in full: " + t.shown;
 }
 
-Plugin open_plugin(const std::string& path) {
+// Every field of a plugin's table checked before any is used; `path` names it in messages.
+Plugin check_table(const cb_engine* api, const std::string& path) {
   const std::string where = "plugin " + path;
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(where + ": no such file");
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(where + ": is a directory, not a shared library");
-  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (!handle) throw InputError(where + ": cannot load it: " + std::string(dlerror()));
-  const auto entry = reinterpret_cast<cb_entry_fn>(dlsym(handle, CHAINBENCH_PLUGIN_ENTRY));
-  if (!entry) {
-    throw InputError(where + ": exports no " + std::string(CHAINBENCH_PLUGIN_ENTRY) +
-                     "() (is it a chainbench plugin? see chainbench/engine_plugin.h)");
-  }
   Plugin p;
   p.path = path;
-  p.api = entry();
-  if (!p.api) throw InputError(where + ": " + CHAINBENCH_PLUGIN_ENTRY + "() returned null");
+  p.api = api;
   if (p.api->abi != CHAINBENCH_PLUGIN_ABI) {
     throw InputError(where + ": built for plugin ABI " + std::to_string(p.api->abi) +
                      ", this chainbench loads ABI " + std::to_string(CHAINBENCH_PLUGIN_ABI) +
@@ -118,14 +108,31 @@ Plugin open_plugin(const std::string& path) {
   return p;
 }
 
+Plugin open_plugin(const std::string& path) {
+  const std::string where = "plugin " + path;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(where + ": no such file");
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(where + ": is a directory, not a shared library");
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) throw InputError(where + ": cannot load it: " + std::string(dlerror()));
+  const auto entry = reinterpret_cast<cb_entry_fn>(dlsym(handle, CHAINBENCH_PLUGIN_ENTRY));
+  if (!entry) {
+    throw InputError(where + ": exports no " + std::string(CHAINBENCH_PLUGIN_ENTRY) +
+                     "() (is it a chainbench plugin? see chainbench/engine_plugin.h)");
+  }
+  const cb_engine* api = entry();
+  if (!api) throw InputError(where + ": " + CHAINBENCH_PLUGIN_ENTRY + "() returned null");
+  return check_table(api, path);
+}
 // Loads each library once.
-const Plugin& load_plugin(const std::string& path) {
+std::shared_ptr<const Plugin> load_plugin(const std::string& path) {
   static std::mutex mutex;
-  static std::map<std::string, std::unique_ptr<Plugin>> loaded;
+  static std::map<std::string, std::shared_ptr<const Plugin>> loaded;
   const std::lock_guard<std::mutex> lock(mutex);
   auto& slot = loaded[path];
-  if (!slot) slot = std::make_unique<Plugin>(open_plugin(path));
-  return *slot;
+  if (!slot) slot = std::make_shared<const Plugin>(open_plugin(path));
+  return slot;
 }
 
 cb_body to_plugin(const Scene& scene, const SceneBody& b) {
@@ -146,8 +153,9 @@ cb_body to_plugin(const Scene& scene, const SceneBody& b) {
 
 class PluginEngine final : public Engine {
  public:
-  PluginEngine(const EngineSpec& spec, const Scene& scene)
-      : plugin_(load_plugin(spec.get("path"))),
+  PluginEngine(std::shared_ptr<const Plugin> plugin, const EngineSpec& spec, const Scene& scene)
+      : owner_(std::move(plugin)),
+        plugin_(*owner_),
         drives_(scene),
         names_(scene.bodies.size()),
         positions_(2 * scene.bodies.size()),
@@ -255,6 +263,7 @@ class PluginEngine final : public Engine {
   }
 
  private:
+  std::shared_ptr<const Plugin> owner_;
   const Plugin& plugin_;
   cb_world* world_ = nullptr;
   DriveSchedule drives_;
@@ -266,6 +275,13 @@ class PluginEngine final : public Engine {
 
 }  // namespace
 
+std::unique_ptr<Engine> make_plugin_engine(const cb_engine* table, const std::string& label,
+                                           const EngineSpec& spec, const Scene& scene) {
+  if (!table) throw InputError("plugin " + label + ": its table is null");
+  return std::make_unique<PluginEngine>(std::make_shared<const Plugin>(check_table(table, label)),
+                                        spec, scene);
+}
+
 EngineDef register_plugin() {
   EngineDef e;
   e.name = "plugin";
@@ -275,7 +291,7 @@ EngineDef register_plugin() {
   e.open_keys = true;
   e.isolated = true;
   e.capabilities = [](const EngineSpec& spec) {
-    const std::uint32_t can = load_plugin(spec.get("path")).api->capabilities;
+    const std::uint32_t can = load_plugin(spec.get("path"))->api->capabilities;
     Capabilities c;
     c.rotation = (can & CB_CAN_ROTATE) != 0;
     c.friction = (can & CB_CAN_FRICTION) != 0;
@@ -285,7 +301,7 @@ EngineDef register_plugin() {
     return c;
   };
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
-    return std::make_unique<PluginEngine>(spec, scene);
+    return std::make_unique<PluginEngine>(load_plugin(spec.get("path")), spec, scene);
   };
   // No add or remove in ABI 1: missing_capability refuses scenes whose bodies come and go.
   return e;

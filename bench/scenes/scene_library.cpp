@@ -69,14 +69,16 @@ Scene make_scene(std::string_view name, const std::vector<std::string>& sets) {
     const std::string& kv = *it;
     const std::size_t eq = kv.find('=');
     if (eq == std::string::npos || eq == 0)
-      throw InputError("--set \"" + kv + "\": expected KEY=VALUE");
+      throw InputError("--set " + cut_for_message(kv) + ": expected KEY=VALUE");
     const std::string key = kv.substr(0, eq);
+    const std::string shown = cut_for_message(key);  // what a message may echo of it
     // One value per key, as in a scene file: a second one is a typo more often than an intent.
     const auto again = std::find_if(sets.begin(), it, [&](const std::string& earlier) {
       return earlier.compare(0, key.size() + 1, key + "=") == 0;
     });
     if (again != it) {
-      throw InputError("--set " + key + ": given twice (\"" + *again + "\", then \"" + kv + "\")" +
+      throw InputError("--set " + shown + ": given twice (" + cut_for_message(*again) + ", then " +
+                       cut_for_message(kv) + ")" +
                        (key == "steps" ? "; --steps sets it too" : ""));
     }
     const auto p = std::find_if(params.begin(), params.end(),
@@ -85,14 +87,15 @@ Scene make_scene(std::string_view name, const std::vector<std::string>& sets) {
       std::string keys;
       for (const SceneParam& q : params)
         keys += (keys.empty() ? "" : ", ") + q.key;
-      throw InputError("--set " + key + ": scene " + recipe->name + " has no parameter \"" + key +
-                       "\" (it has: " + keys + ")");
+      throw InputError("--set " + shown + ": scene " + recipe->name + " has no parameter \"" +
+                       shown + "\" (it has: " + keys + ")");
     }
-    const double v = parse_number("--set " + key, kv.substr(eq + 1));
+    const double v = parse_number("--set " + shown, kv.substr(eq + 1));
     if (p->integer && v != std::floor(v))
-      throw InputError("--set " + key + ": must be a whole number, got " + kv.substr(eq + 1));
+      throw InputError("--set " + shown + ": must be a whole number, got " +
+                       cut_for_message(kv.substr(eq + 1)));
     if (v < p->min || v > p->max) {
-      throw InputError("--set " + key + ": " + num(v) + " is out of range [" + num(p->min) + ", " +
+      throw InputError("--set " + shown + ": " + num(v) + " is out of range [" + num(p->min) + ", " +
                        num(p->max) + "] for scene " + recipe->name);
     }
     values.set(key, v);

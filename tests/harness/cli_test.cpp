@@ -268,6 +268,15 @@ TEST(Cli, LargeBadInputsAreRefusedWithShortMessages) {
   EXPECT_NE(r.out.find("bytes)\": chain:budget=1 given twice"), std::string::npos)
       << r.out.substr(0, 2000);
   EXPECT_LT(r.out.size(), 1000u);
+  // What --set echoes of a long key or value is cut as well.
+  const std::string key(10000, 'k'), zeros(10000, '0');
+  for (const std::string& set : {key + "=1", "n=1.5" + zeros, "n=" + zeros + "1 --set n=1",
+                                 "n=1 --set n=" + zeros, key}) {
+    r = chainbench("run --scene stack --set " + set);
+    EXPECT_EQ(r.status, 2) << set.substr(0, 40);
+    EXPECT_NE(r.out.find("bytes)"), std::string::npos) << r.out.substr(0, 2000);
+    EXPECT_LT(r.out.size(), 1000u) << set.substr(0, 40);
+  }
 }
 
 // The first step is left out of the timing as a warm-up, except when it is the only one: a run

@@ -6,7 +6,8 @@
 #                           chromium (replay pages played headless: their test, the report's
 #                           screenshots), parallel (GNU parallel: the sharded sweep's test)
 #   scripts/deps.sh run     the same
-#   scripts/deps.sh fuzz    build + clang and its libFuzzer runtime
+#   scripts/deps.sh asan    build + clang and its sanitizer and libFuzzer runtimes (the asan
+#                           preset, the fuzz targets)
 set -euo pipefail
 
 build=(cmake ninja-build g++ libbox2d-dev libchipmunk-dev libgtest-dev libgmock-dev libbenchmark-dev
@@ -14,8 +15,8 @@ build=(cmake ninja-build g++ libbox2d-dev libchipmunk-dev libgtest-dev libgmock-
 case "${1:-build}" in
   build) wanted=("${build[@]}") ;;
   run) wanted=("${build[@]}") ;;
-  fuzz) wanted=("${build[@]}" clang libclang-rt-14-dev) ;;
-  *) echo "usage: $0 [build|run|fuzz]" >&2; exit 2 ;;
+  asan) wanted=("${build[@]}" clang libclang-rt-14-dev) ;;
+  *) echo "usage: $0 [build|run|asan]" >&2; exit 2 ;;
 esac
 
 missing=()

@@ -3,7 +3,7 @@
 # plugin (what a plugin hands back), each from its corpus in tests/fuzz/corpus/<target>/.
 #
 #   scripts/fuzz.sh [SECONDS] [TARGET...]     each target for SECONDS (default 60), built with
-#                                             ASan + UBSan (preset "fuzz"): what CI runs
+#                                             ASan + UBSan (preset "asan"): what CI runs
 #   scripts/fuzz.sh --runs N [--jobs J] [TARGET...]
 #                                             a campaign: N executions per target, built for
 #                                             coverage only (preset "fuzz-fast", several times the
@@ -12,7 +12,7 @@
 #                                             replayed once under ASan + UBSan
 #
 # Prints a table: executions, rate, coverage (libFuzzer's cov: edges), corpus, result. Exits 1 if
-# a target found a crash, a hang or a leak: the reproducer is in build-fuzz*/artifacts/<target>/;
+# a target found a crash, a hang or a leak: the reproducer is in build-*/artifacts/<target>/;
 # add it to tests/fuzz/corpus/<target>/ with the fix, and every build replays it from then on.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -47,22 +47,22 @@ for t in "${targets[@]}"; do
 done
 fuzz_names=("${targets[@]/#/fuzz_}")
 
-scripts/deps.sh fuzz
-# The targets alone: the rest of the tree (the chainbench command, the plugins) is not fuzzed.
-cmake --preset fuzz > /dev/null
-cmake --build --preset fuzz --target "${fuzz_names[@]}"
+scripts/deps.sh asan
+# The targets alone (in CI, scripts/test.sh asan has built them with the rest).
+cmake --preset asan > /dev/null
+cmake --build --preset asan --target "${fuzz_names[@]}"
 if [[ -n "$runs" ]]; then
   cmake --preset fuzz-fast > /dev/null
   cmake --build --preset fuzz-fast --target "${fuzz_names[@]}"
   build=build-fuzz-fast
 else
-  build=build-fuzz
+  build=build-asan
 fi
 
 status=0
 summary=()
 for target in "${targets[@]}"; do
-  work=build-fuzz/corpus/$target
+  work=build-asan/corpus/$target
   artifacts=$build/artifacts/$target/
   mkdir -p "$work" "$artifacts"
   budget_text="$seconds s"
@@ -106,9 +106,9 @@ for target in "${targets[@]}"; do
   corpus=$(find "$work" -type f | wc -l)
   # A campaign's throughput build has no sanitizers: what it kept is replayed with them.
   if [[ -n "$runs" && "$result" == ok ]]; then
-    replay_log=build-fuzz/replay_$target.log
-    if ! build-fuzz/bin/fuzz_$target -runs=0 -timeout=10 -rss_limit_mb=2048 \
-        -artifact_prefix="build-fuzz/artifacts/$target/" "$work" "tests/fuzz/corpus/$target" \
+    replay_log=build-asan/replay_$target.log
+    if ! build-asan/bin/fuzz_$target -runs=0 -timeout=10 -rss_limit_mb=2048 \
+        -artifact_prefix="build-asan/artifacts/$target/" "$work" "tests/fuzz/corpus/$target" \
         > "$replay_log" 2>&1; then
       status=1
       result="FAILED under ASan + UBSan (log: $replay_log)"

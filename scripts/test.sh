@@ -2,13 +2,13 @@
 # Installs what is missing, builds with a CMake preset (release unless named) and runs every
 # test with ctest, printing the output of any test that fails.
 #   scripts/test.sh          release preset, build/
-#   scripts/test.sh asan     AddressSanitizer + UBSan, build-asan/
+#   scripts/test.sh asan     AddressSanitizer + UBSan (clang), build-asan/, the fuzz targets too
 set -euo pipefail
 cd "$(dirname "$0")/.."
 preset="${1:-release}"
 case "$preset" in release|debug|asan) ;; *) echo "usage: $0 [release|debug|asan]" >&2; exit 2 ;; esac
 
-scripts/deps.sh build
+if [[ "$preset" == asan ]]; then scripts/deps.sh asan; else scripts/deps.sh build; fi
 cmake --preset "$preset"
 cmake --build --preset "$preset"
 ctest --preset "$preset"

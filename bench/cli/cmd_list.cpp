@@ -60,6 +60,8 @@ int list_engines() {
         values += (values.empty() ? "" : "|") + c;
       if (k.file) {
         values = "a file";
+      } else if (k.text) {
+        values = "text";
       } else if (values.empty()) {
         values = "[" + fmt_g(k.min, 9) + ", " + fmt_g(k.max, 9) + "]" + (k.integer ? " whole" : "");
       }
@@ -68,7 +70,7 @@ int list_engines() {
         def += ", " + then + " if " + k.depends_on + "=" + when;
       t.add({"  " + k.name, def, values, k.help});
     }
-    if (e.open_keys) t.add({"  (others)", "", "", "passed to the engine as they are"});
+    if (e.more_keys) t.add({"  (more)", "", "", "the keys its library declares"});
     t.print(std::cout);
     for (const EngineLimit& l : e.limits)
       std::cout << "  limit: " << l.what << ": " << fmt_g(l.value, 9) << " " << l.unit << "\n";

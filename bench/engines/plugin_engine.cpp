@@ -5,11 +5,12 @@
 // point, was built for another ABI or gives an incomplete table, a world it cannot build, a step
 // that fails, a state of the wrong size or with a non-finite number, each stops the run with a
 // message naming the plugin (InputError: exit status 2, or an `error` verdict in stress).
+#include "plugin_engine.h"
 #include "drive_schedule.h"
 #include "input_error.h"
-#include "plugin_engine.h"
 #include "plugin_text.h"
 #include "registry.h"
+#include "text_table.h"
 
 #include <chainbench/engine_plugin.h>
 
@@ -30,6 +31,11 @@ constexpr std::size_t kMaxCounters = 16;
 constexpr std::size_t kNameBound = 64;     // a plugin's name: under 64 bytes, terminated
 constexpr std::size_t kCounterBound = 32;  // a counter's name: under 32 bytes, terminated
 constexpr std::size_t kErrorSize = 512;    // the error buffer chainbench hands a plugin
+constexpr std::size_t kMaxKeys = 32;
+constexpr std::size_t kKeyBound = 32;               // a key's name, as a counter's
+constexpr std::size_t kDefaultBound = 64;           // a key's default
+constexpr std::size_t kHelpBound = 128;             // a key's help line
+constexpr double kWholeLimit = 9007199254740992.0;  // 2^53: every whole double up to it is exact
 
 // A loaded library. Never unloaded: its function pointers must outlive every world made from it.
 struct Plugin {
@@ -37,6 +43,7 @@ struct Plugin {
   std::string name;
   const cb_engine* api = nullptr;
   std::vector<CounterDef> counters;
+  std::vector<KeyDef> keys;  // as the spec parser checks them (KeyDef)
 };
 
 std::string describe(const Plugin& p) {
@@ -48,6 +55,72 @@ std::string plugin_error(const char* error) {
   const PluginText t = read_plugin_text(error, kErrorSize);
   if (t.problem.empty()) return t.text.empty() ? "it gave no reason" : t.text;
   return "its message " + t.problem + ", so it is not shown in full: " + t.shown;
+}
+
+// A string of the plugin's read within `bound`, or InputError saying what of it is bad.
+std::string plugin_string(const std::string& what, const char* raw, std::size_t bound) {
+  const PluginText t = read_plugin_text(raw, bound);
+  if (!t.problem.empty()) throw InputError(what + " " + t.problem + ": " + t.shown);
+  return t.text;
+}
+
+// The plugin's declared keys as KeyDefs, each checked: its name, type, range, default and help.
+std::vector<KeyDef> check_keys(const Plugin& p) {
+  const cb_engine& api = *p.api;
+  if (api.key_count > kMaxKeys) {
+    throw InputError(describe(p) + ": declares " + std::to_string(api.key_count) +
+                     " keys, more than " + std::to_string(kMaxKeys));
+  }
+  if (api.key_count > 0 && !api.keys) {
+    throw InputError(describe(p) + ": declares " + std::to_string(api.key_count) +
+                     " keys and gives no table of them");
+  }
+  std::vector<KeyDef> keys;
+  for (std::uint32_t k = 0; k < api.key_count; ++k) {
+    const cb_key& raw = api.keys[k];
+    const std::string at = describe(p) + ": key " + std::to_string(k);
+    const PluginText name = read_plugin_text(raw.name, kKeyBound);
+    const std::string problem = name.problem.empty() ? key_name_problem(name.text) : name.problem;
+    if (!problem.empty()) {
+      throw InputError(at + " has no valid name (letters a-z, digits and _, under 32): its name " +
+                       problem + ": " + name.shown);
+    }
+    const std::string key_at = describe(p) + ": key " + name.text;
+    for (const KeyDef& earlier : keys) {
+      if (earlier.name == name.text) {
+        throw InputError(at + " is named " + name.text +
+                         ", as an earlier key is: each key needs a name of its own");
+      }
+    }
+    KeyDef def;
+    def.name = name.text;
+    def.help = plugin_string(key_at + ": its help", raw.help, kHelpBound);
+    if (raw.type == CB_KEY_TEXT) {
+      def.text = true;
+    } else if (raw.type == CB_KEY_NUMBER || raw.type == CB_KEY_INTEGER) {
+      def.integer = raw.type == CB_KEY_INTEGER;
+      def.min = raw.min, def.max = raw.max;
+      const double limit = def.integer ? kWholeLimit : HUGE_VAL;
+      auto bad = [&](double v) {
+        return !std::isfinite(v) || std::abs(v) > limit || (def.integer && v != std::floor(v));
+      };
+      if (bad(def.min) || bad(def.max) || def.min > def.max) {
+        throw InputError(key_at + ": its range [" + fmt_g(def.min, 9) + ", " + fmt_g(def.max, 9) +
+                         "] is not " +
+                         (def.integer ? "two whole numbers within 2^53" : "two finite numbers") +
+                         ", the first no larger");
+      }
+    } else {
+      throw InputError(key_at + ": its type is " + std::to_string(raw.type) +
+                       " (CB_KEY_NUMBER 0, CB_KEY_INTEGER 1 or CB_KEY_TEXT 2)");
+    }
+    const std::string value =
+        plugin_string(key_at + ": its default", raw.default_value, kDefaultBound);
+    // The spec parser's own check: a default is a value the key accepts.
+    def.default_value = checked_key_value(key_at + ": its default", def, value);
+    keys.push_back(std::move(def));
+  }
+  return keys;
 }
 
 // Every field of a plugin's table checked before any is used; `path` names it in messages.
@@ -105,6 +178,7 @@ Plugin check_table(const cb_engine* api, const std::string& path) {
     }
     p.counters.push_back({name.text, Aggregate::kMean, "reported by the plugin", name.text});
   }
+  p.keys = check_keys(p);
   return p;
 }
 
@@ -278,8 +352,15 @@ class PluginEngine final : public Engine {
 std::unique_ptr<Engine> make_plugin_engine(const cb_engine* table, const std::string& label,
                                            const EngineSpec& spec, const Scene& scene) {
   if (!table) throw InputError("plugin " + label + ": its table is null");
-  return std::make_unique<PluginEngine>(std::make_shared<const Plugin>(check_table(table, label)),
-                                        spec, scene);
+  auto plugin = std::make_shared<const Plugin>(check_table(table, label));
+  // As the spec parser would: every setting a declared key's, checked, defaults filled in.
+  EngineSpec checked{spec.engine, {}};
+  std::vector<std::pair<std::string, std::string>> given;
+  for (const auto& setting : spec.settings)
+    (setting.first == "path" ? checked.settings : given).push_back(setting);
+  add_key_settings("engine spec \"" + cut_for_message(spec.str()) + "\"", plugin->keys, given,
+                   checked);
+  return std::make_unique<PluginEngine>(std::move(plugin), checked, scene);
 }
 
 EngineDef register_plugin() {
@@ -288,7 +369,7 @@ EngineDef register_plugin() {
   e.description =
       "your own resolver, from a shared library built against chainbench/engine_plugin.h";
   e.keys = {file_key("path", "the plugin's shared library (.so)")};
-  e.open_keys = true;
+  e.more_keys = [](const EngineSpec& spec) { return load_plugin(spec.get("path"))->keys; };
   e.isolated = true;
   e.capabilities = [](const EngineSpec& spec) {
     const std::uint32_t can = load_plugin(spec.get("path"))->api->capabilities;

@@ -56,6 +56,15 @@ KeyDef file_key(std::string name, std::string help) {
   return k;
 }
 
+KeyDef text_key(std::string name, std::string default_value, std::string help) {
+  KeyDef k;
+  k.name = std::move(name);
+  k.default_value = std::move(default_value);
+  k.text = true;
+  k.help = std::move(help);
+  return k;
+}
+
 const std::vector<EngineDef>& engine_registry() {
   static const std::vector<EngineDef> registry = {
 #define CHAINBENCH_ENGINE(name) register_##name(),

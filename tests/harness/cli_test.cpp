@@ -270,8 +270,8 @@ TEST(Cli, LargeBadInputsAreRefusedWithShortMessages) {
   EXPECT_LT(r.out.size(), 1000u);
   // What --set echoes of a long key or value is cut as well.
   const std::string key(10000, 'k'), zeros(10000, '0');
-  for (const std::string& set : {key + "=1", "n=1.5" + zeros, "n=" + zeros + "1 --set n=1",
-                                 "n=1 --set n=" + zeros, key}) {
+  for (const std::string& set :
+       {key + "=1", "n=1.5" + zeros, "n=" + zeros + "1 --set n=1", "n=1 --set n=" + zeros, key}) {
     r = chainbench("run --scene stack --set " + set);
     EXPECT_EQ(r.status, 2) << set.substr(0, 40);
     EXPECT_NE(r.out.find("bytes)"), std::string::npos) << r.out.substr(0, 2000);
@@ -603,12 +603,33 @@ TEST(Cli, APluginRunsInRunSweepAndStress) {
   EXPECT_NE(stress.out.find("plugin:path=librelaxation.so"), std::string::npos) << stress.out;
 }
 
+// A key the plugin does not declare, or a value out of its range, stops the command as the spec
+// is read: exit 2 naming the plugin, the key and why, before any engine runs (no scene header,
+// no row of the chain engine listed before it).
+TEST(Cli, ABadPluginKeyIsRefusedBeforeAnyEngineRuns) {
+  const std::string plugin =
+      std::string("plugin:path=") + CHAINBENCH_TEST_PLUGINS + "/libtest_plugin_none.so";
+  for (const auto& [keys, message] :
+       {std::pair<std::string, std::string>{"bogus=1", "unknown key \"bogus\" for plugin"},
+        {"gain=11", "gain: 11 is out of range [0, 10]"}}) {
+    SCOPED_TRACE(keys);
+    const Result r = chainbench("run --scene stack --set n=2 --engines chain," + plugin + "," +
+                                keys + " --reference none");
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("libtest_plugin_none.so"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("scene stack"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("ms/step"), std::string::npos) << r.out;
+  }
+}
+
 TEST(Cli, PluginFaultsExitTwoWithTheirReason) {
   const std::string dir = CHAINBENCH_TEST_PLUGINS;
   for (const auto& [fault, message] :
        {std::pair<std::string, std::string>{"missing", "no such file"},
         {"no_entry", "exports no chainbench_engine_plugin()"},
-        {"abi", "built for plugin ABI 2"},
+        {"abi", "built for plugin ABI 3, this chainbench loads ABI 2"},
+        {"abi1", "built for plugin ABI 1, this chainbench loads ABI 2"},
         {"create", "this plugin builds no worlds"},
         {"nan", "non-finite state for body"}}) {
     SCOPED_TRACE(fault);

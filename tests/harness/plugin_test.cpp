@@ -59,13 +59,45 @@ TEST(Plugin, BallisticPluginFollowsTheAnalyticFlight) {
   EXPECT_DOUBLE_EQ(run.counters[0], (n + 1) / 2.0);
 }
 
-TEST(Plugin, SettingsReachThePlugin) {
+// Every declared key reaches the plugin, in its order, given or defaulted, in canonical form.
+TEST(Plugin, SettingsReachThePluginWithDefaultsFilledIn) {
   try {
-    run_engine(flight(), parse_engine_spec(plugin_spec("none") + ",colour=red"), RunOptions{});
-    FAIL() << "the plugin accepted a setting it does not know";
+    run_engine(flight(), parse_engine_spec(plugin_spec("none") + ",label=echo,gain=2.50"),
+               RunOptions{});
+    FAIL() << "label=echo did not reach the plugin";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("unknown setting \"colour\""), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("settings: gain=2.5 substeps=1 label=echo"),
+              std::string::npos)
         << e.what();
+  }
+  const EngineSpec spec = parse_engine_spec(plugin_spec("none") + ",substeps=3");
+  EXPECT_EQ(spec.get("gain"), "1");
+  EXPECT_EQ(spec.get("substeps"), "3");
+  EXPECT_EQ(spec.get("label"), "none");
+  EXPECT_EQ(spec.label(), "plugin:path=libtest_plugin_none.so,substeps=3");
+  EXPECT_EQ(parse_engine_spec(spec.str()), spec);
+}
+
+// A key the plugin does not declare, or a value outside what it declares, is refused when the
+// spec is read, naming the spec (so the plugin's library), the key and why.
+TEST(Plugin, AnUndeclaredKeyOrABadValueIsRefusedWhenTheSpecIsRead) {
+  for (const auto& [keys, message] :
+       {std::pair<std::string, std::string>{"colour=red",
+                                            "unknown key \"colour\" for plugin (keys: gain, "
+                                            "substeps, label)"},
+        {"gain=11", "gain: 11 is out of range [0, 10]"},
+        {"substeps=2.5", "substeps"},
+        {"substeps=9", "substeps"},
+        {"label=", "label is empty"}}) {
+    SCOPED_TRACE(keys);
+    try {
+      parse_engine_spec(plugin_spec("none") + "," + keys);
+      FAIL() << "accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(message), std::string::npos) << what;
+      EXPECT_NE(what.find("libtest_plugin_none.so"), std::string::npos) << what;
+    }
   }
 }
 
@@ -105,8 +137,14 @@ INSTANTIATE_TEST_SUITE_P(
     EveryFault, PluginFault,
     ::testing::Values(
         Fault{"no_entry", "exports no chainbench_engine_plugin()"},
-        Fault{"abi", "built for plugin ABI 2, this chainbench loads ABI 1"},
-        Fault{"size", "its cb_engine is"},
+        Fault{"abi", "built for plugin ABI 3, this chainbench loads ABI 2"},
+        Fault{"abi1", "built for plugin ABI 1, this chainbench loads ABI 2: rebuild it"},
+        Fault{"key_name",
+              "key 0 has no valid name (letters a-z, digits and _, under 32): its "
+              "name holds 'G'"},
+        Fault{"key_default", "key gain: its default: gain: 20 is out of range [0, 10]"},
+        Fault{"key_range", "key substeps: its range [8, 1] is not two whole numbers"},
+        Fault{"key_type", "key substeps: its type is 7"}, Fault{"size", "its cb_engine is"},
         Fault{"null_function", "leaves a required function null"},
         Fault{"bad_counter", "counter 0 has no valid name"},
         Fault{"create", "could not build scene flight: this plugin builds no worlds"},

@@ -37,6 +37,12 @@
 #define FAULT_STEP_RC 23           /* step 3 returns 2 */
 #define FAULT_CAPABILITY 24        /* an unknown capability bit */
 #define FAULT_ERROR_ESCAPE 25      /* refuses every world with terminal escapes in the message */
+#define FAULT_ABI1 26              /* built for ABI 1, which had no declared keys */
+/* Declared keys that are not what the contract allows. */
+#define FAULT_KEY_NAME 27    /* a key named "Gain" */
+#define FAULT_KEY_DEFAULT 28 /* gain's default, 20, outside its range [0, 10] */
+#define FAULT_KEY_RANGE 29   /* substeps' range [8, 1] */
+#define FAULT_KEY_TYPE 30    /* a key of type 7 */
 
 #ifndef TEST_PLUGIN_FAULT
 #define TEST_PLUGIN_FAULT FAULT_NONE
@@ -55,7 +61,6 @@ static void write_error(char* error, size_t size, const char* text) {
 }
 
 static cb_world* create(const cb_world_desc* desc, char* error, size_t error_size) {
-  uint32_t i;
   cb_world* w;
   if (TEST_PLUGIN_FAULT == FAULT_CREATE) {
     write_error(error, error_size, "this plugin builds no worlds");
@@ -69,9 +74,13 @@ static cb_world* create(const cb_world_desc* desc, char* error, size_t error_siz
     write_error(error, error_size, "bad\033[2J\nchainbench: all engines ok");
     return NULL;
   }
-  for (i = 0; i < desc->setting_count; ++i) {
-    char message[128];
-    snprintf(message, sizeof message, "unknown setting \"%s\"", desc->settings[i].key);
+  /* label=echo: refuses the world with the settings it was given, in their order. */
+  if (desc->setting_count == 3 && strcmp(desc->settings[2].key, "label") == 0 &&
+      strcmp(desc->settings[2].value, "echo") == 0) {
+    char message[256];
+    snprintf(message, sizeof message, "settings: %s=%s %s=%s %s=%s", desc->settings[0].key,
+             desc->settings[0].value, desc->settings[1].key, desc->settings[1].value,
+             desc->settings[2].key, desc->settings[2].value);
     write_error(error, error_size, message);
     return NULL;
   }
@@ -188,6 +197,15 @@ static const char* const counter_names[] = {"budget_hits"};
 static const char* const counter_names[] = {"steps_so_far"};
 #endif
 
+/* Keys it declares; the ballistic integrator ignores them, but label=echo shows what arrived. */
+static const cb_key keys[] = {
+    {TEST_PLUGIN_FAULT == FAULT_KEY_NAME ? "Gain" : "gain", CB_KEY_NUMBER, 0, 10,
+     TEST_PLUGIN_FAULT == FAULT_KEY_DEFAULT ? "20" : "1", "a gain, from 0 to 10"},
+    {"substeps", TEST_PLUGIN_FAULT == FAULT_KEY_TYPE ? 7 : CB_KEY_INTEGER,
+     TEST_PLUGIN_FAULT == FAULT_KEY_RANGE ? 8 : 1, TEST_PLUGIN_FAULT == FAULT_KEY_RANGE ? 1 : 8,
+     "1", "sub-steps per step"},
+    {"label", CB_KEY_TEXT, 0, 0, "none", "echo: refuse the world, listing the settings"}};
+
 #if TEST_PLUGIN_FAULT == FAULT_NAME_UNTERMINATED
 #define PLUGIN_NAME unterminated
 #elif TEST_PLUGIN_FAULT == FAULT_NAME_ESCAPE
@@ -197,18 +215,23 @@ static const char* const counter_names[] = {"steps_so_far"};
 #endif
 
 static const cb_engine engine = {
-    TEST_PLUGIN_FAULT == FAULT_ABI ? CHAINBENCH_PLUGIN_ABI + 1 : CHAINBENCH_PLUGIN_ABI,
-    TEST_PLUGIN_FAULT == FAULT_SIZE ? sizeof(cb_engine) - 8 : sizeof(cb_engine),
-    PLUGIN_NAME,
-    CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES | (TEST_PLUGIN_FAULT == FAULT_CAPABILITY ? 256u : 0u),
-    sizeof counter_names / sizeof counter_names[0],
-    counter_names,
-    create,
-    set_velocity,
-    TEST_PLUGIN_FAULT == FAULT_NULL_FUNCTION ? NULL : step,
-    read_state,
-    read_counters,
-    destroy};
+    .abi = TEST_PLUGIN_FAULT == FAULT_ABI    ? CHAINBENCH_PLUGIN_ABI + 1
+           : TEST_PLUGIN_FAULT == FAULT_ABI1 ? 1
+                                             : CHAINBENCH_PLUGIN_ABI,
+    .size = TEST_PLUGIN_FAULT == FAULT_SIZE ? sizeof(cb_engine) - 8 : sizeof(cb_engine),
+    .name = PLUGIN_NAME,
+    .capabilities =
+        CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES | (TEST_PLUGIN_FAULT == FAULT_CAPABILITY ? 256u : 0u),
+    .counter_count = sizeof counter_names / sizeof counter_names[0],
+    .counter_names = counter_names,
+    .key_count = sizeof keys / sizeof keys[0],
+    .keys = keys,
+    .create = create,
+    .set_velocity = set_velocity,
+    .step = TEST_PLUGIN_FAULT == FAULT_NULL_FUNCTION ? NULL : step,
+    .read_state = read_state,
+    .read_counters = read_counters,
+    .destroy = destroy};
 
 #if TEST_PLUGIN_FAULT == FAULT_NO_ENTRY
 CHAINBENCH_PLUGIN_EXPORT const cb_engine* not_the_entry_point(void) {

@@ -4,8 +4,9 @@
  * a table of functions (cb_engine). chainbench loads it with
  *     chainbench run --scene pyramid --engines plugin:path=./librelaxation.so,iterations=4
  * and builds one world per run from a flat description of the scene, then, every step, sets the
- * velocities of driven bodies, steps, and reads every body's state back. Every other key of the
- * spec (iterations=4 above) reaches the plugin as a setting.
+ * velocities of driven bodies, steps, and reads every body's state back. A plugin declares its keys
+ * (cb_key): chainbench checks a spec's keys and values against them when it reads the spec, before
+ * any engine runs, and hands the plugin every declared key as a setting, defaults filled in.
  *
  * Units are metres, kilograms and seconds, y up; bodies are axis-aligned boxes given by centre and
  * half extents, in scene order, and every index below is a body's place in that order. The
@@ -24,7 +25,7 @@
 extern "C" {
 #endif
 
-#define CHAINBENCH_PLUGIN_ABI 1
+#define CHAINBENCH_PLUGIN_ABI 2
 
 /* Body kinds. */
 enum { CB_STATIC = 0, CB_KINEMATIC = 1, CB_DYNAMIC = 2 };
@@ -53,9 +54,23 @@ typedef struct cb_body {
   double restitution;     /* in [0, 1] */
 } cb_body;
 
+/* Types of a key's value (cb_key.type). */
+enum { CB_KEY_NUMBER = 0, CB_KEY_INTEGER = 1, CB_KEY_TEXT = 2 };
+
+/* A key a spec may give the plugin, e.g. iterations=8. Every string is printable ASCII. */
+typedef struct cb_key {
+  const char* name; /* [a-z0-9_], terminated within 32 bytes, distinct, not "path" */
+  int32_t type;     /* CB_KEY_NUMBER, CB_KEY_INTEGER or CB_KEY_TEXT */
+  double min;       /* finite, <= max, whole for an integer; unused for text */
+  double max;       /* finite; an integer's range within +-2^53 */
+  const char*
+      default_value; /* terminated within 64 bytes; a value the key accepts (text: not "") */
+  const char* help;  /* one line, terminated within 128 bytes */
+} cb_key;
+
 typedef struct cb_setting {
-  const char* key;   /* a spec key other than path, e.g. "iterations" */
-  const char* value; /* as typed, e.g. "4" */
+  const char* key;   /* a declared key's name, every one in declaration order */
+  const char* value; /* checked against its cb_key: "4"; a number in its shortest form */
 } cb_setting;
 
 typedef struct cb_world_desc {
@@ -82,10 +97,12 @@ typedef struct cb_engine {
   /* counter_count distinct names, [a-z0-9_], terminated within 32 bytes, none of budget_hits and
    * crush_events (kept for the chain solver's counters); reported as per-step means. */
   const char* const* counter_names;
+  uint32_t key_count; /* keys a spec may give (<= 32); a spec key it does not declare is refused */
+  const cb_key* keys; /* key_count keys, listed by `chainbench engines plugin:path=FILE` */
 
   /* A world built from desc, or NULL with a message written to error (at most error_size bytes,
-   * terminated; printable ASCII, or only its printable start is shown). An unknown or bad setting
-   * is such an error. */
+   * terminated; printable ASCII, or only its printable start is shown). Settings are already
+   * checked against the declared keys. */
   cb_world* (*create)(const cb_world_desc* desc, char* error, size_t error_size);
   /* Sets the velocity of body along the axes set in axes (CB_AXIS_X | CB_AXIS_Y), leaving the
    * other axis as it is: chainbench drives bodies this way at the start of a step. 0, or nonzero

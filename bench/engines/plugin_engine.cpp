@@ -161,10 +161,14 @@ Plugin check_table(const cb_engine* api, const std::string& path) {
                      " that this chainbench does not know (it knows CB_CAN_*, " +
                      std::to_string(known_capabilities()) + " together)");
   }
+  if (p.api->counter_count > 0 && !p.api->counters) {
+    throw InputError(describe(p) + ": reports " + std::to_string(p.api->counter_count) +
+                     " counters and gives no table of them");
+  }
   std::set<std::string> seen;
   for (std::uint32_t k = 0; k < p.api->counter_count; ++k) {
-    const char* raw = p.api->counter_names ? p.api->counter_names[k] : nullptr;
-    const PluginText name = read_plugin_text(raw, kCounterBound);
+    const cb_counter& raw = p.api->counters[k];
+    const PluginText name = read_plugin_text(raw.name, kCounterBound);
     const std::string problem =
         name.problem.empty() ? counter_name_problem(name.text) : name.problem;
     if (!problem.empty()) {
@@ -176,7 +180,27 @@ Plugin check_table(const cb_engine* api, const std::string& path) {
       throw InputError(describe(p) + ": counter " + std::to_string(k) + " is named " + name.text +
                        ", as an earlier counter is: each counter needs a name of its own");
     }
-    p.counters.push_back({name.text, Aggregate::kMean, "reported by the plugin", name.text});
+    const std::string at = describe(p) + ": counter " + name.text;
+    CounterDef def{name.text, Aggregate::kMean,
+                   plugin_string(at + ": its description", raw.description, kHelpBound), name.text};
+    switch (raw.aggregate) {
+      case CB_AGG_MEAN:
+        def.aggregate = Aggregate::kMean;
+        break;
+      case CB_AGG_MAX:
+        def.aggregate = Aggregate::kMax;
+        break;
+      case CB_AGG_SUM:
+        def.aggregate = Aggregate::kSum;
+        break;
+      case CB_AGG_LAST:
+        def.aggregate = Aggregate::kLast;
+        break;
+      default:
+        throw InputError(at + ": its aggregate is " + std::to_string(raw.aggregate) +
+                         " (CB_AGG_MEAN 0, CB_AGG_MAX 1, CB_AGG_SUM 2 or CB_AGG_LAST 3)");
+    }
+    p.counters.push_back(std::move(def));
   }
   p.keys = check_keys(p);
   return p;

@@ -6,8 +6,8 @@
 // state or counter that reaches chainbench is finite, a step accepted returned 0 or 1.
 //
 // Every string the fake hands out lives in a heap block of exactly the size the contract bounds
-// it by (64 bytes for the name, 32 per counter or key name, 64 for a key's default, 128 for its
-// help, error_size for an error), so that ASan
+// it by (64 bytes for the name, 32 per counter or key name, 128 per description or help, 64 for
+// a key's default, error_size for an error), so that ASan
 // reports any read past the bound.
 #include "byte_reader.h"
 #include "input_error.h"
@@ -164,17 +164,23 @@ void fake_keys(cb_engine& t, std::vector<cb_key>& keys) {
 }
 
 // The table, field by field from the bytes; mostly valid, so that runs get past the checks.
-cb_engine fake_table(std::vector<const char*>& names, std::vector<cb_key>& keys) {
+cb_engine fake_table(std::vector<cb_counter>& counters, std::vector<cb_key>& keys) {
   cb_engine t{};
   t.abi = g.bytes.pick(32) == 0 ? g.bytes.byte() : CHAINBENCH_PLUGIN_ABI;
   t.size = g.bytes.pick(32) == 0 ? g.bytes.byte() : static_cast<std::uint32_t>(sizeof(cb_engine));
   t.name = g.bytes.pick(8) == 0 ? nullptr : text_block(64);
   t.capabilities = g.bytes.pick(16) == 0 ? 0xffffffffu : g.bytes.byte() & 31u;
   counter_count = static_cast<std::uint32_t>(g.bytes.pick(20));
-  for (std::uint32_t k = 0; k < counter_count; ++k)
-    names.push_back(g.bytes.pick(32) == 0 ? nullptr : text_block(32));
+  for (std::uint32_t k = 0; k < counter_count; ++k) {
+    cb_counter c{};
+    c.name = g.bytes.pick(32) == 0 ? nullptr : text_block(32);
+    c.description = g.bytes.pick(32) == 0 ? nullptr : text_block(128);
+    c.aggregate = static_cast<std::int32_t>(g.bytes.pick(g.bytes.pick(16) == 0 ? 256 : 4)) -
+                  (g.bytes.pick(64) == 0 ? 128 : 0);
+    counters.push_back(c);
+  }
   t.counter_count = counter_count;
-  t.counter_names = g.bytes.pick(32) == 0 ? nullptr : names.data();
+  t.counters = g.bytes.pick(32) == 0 ? nullptr : counters.data();
   fake_keys(t, keys);
   t.create = fake_create;
   t.set_velocity = fake_set_velocity;
@@ -236,9 +242,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace chainbench;
   g = Fake{};
   g.bytes = fuzz::ByteReader(data, size);
-  std::vector<const char*> names;
+  std::vector<cb_counter> counters;
   std::vector<cb_key> keys;
-  const cb_engine table = fake_table(names, keys);
+  const cb_engine table = fake_table(counters, keys);
   const Scene& s = scene();
   try {
     const EngineSpec spec{"plugin", {{"path", "fuzz.so"}, {"iterations", "4"}}};
@@ -250,6 +256,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(table.key_count <= 32 && table.key_count > 0 && table.keys,
             "a spec key was accepted that the table does not declare, or over 32 keys");
     require(engine->counter_defs().size() == table.counter_count, "counters lost or invented");
+    for (std::uint32_t k = 0; k < table.counter_count; ++k) {
+      require(
+          table.counters[k].aggregate >= CB_AGG_MEAN && table.counters[k].aggregate <= CB_AGG_LAST,
+          "a counter of an unknown aggregate was accepted");
+    }
     BodyState state(s.bodies.size());
     for (int step = 0; step < s.steps; ++step) {
       engine->step(step);

@@ -53,10 +53,18 @@ TEST(Plugin, BallisticPluginFollowsTheAnalyticFlight) {
   EXPECT_NEAR(run.final_positions[1].x, 10.0 + n * s.dt * 3.0, 1e-9);       // x held by its driver
   EXPECT_NEAR(run.final_positions[1].y, fallen(10, 0, -5, s.dt, n), 1e-9);  // gravity scale 0.5
   EXPECT_NEAR(run.final_positions[2].y, 0.0 + n * s.dt * 1.0, 1e-9);
-  // Its one counter is the steps it has taken; the run reports its mean over steps, (n + 1) / 2.
-  ASSERT_EQ(run.counters.size(), 1u);
+  // Its four counters are each the steps it has taken, aggregated four ways as it declares: the
+  // mean over steps (n + 1) / 2, the largest n, the sum n (n + 1) / 2 and the last n.
+  ASSERT_EQ(run.counters.size(), 4u);
   EXPECT_EQ(run.counter_defs()[0].name, "steps_so_far");
+  EXPECT_EQ(run.counter_defs()[0].help, "steps taken, mean");
+  EXPECT_EQ(run.counter_defs()[1].aggregate, Aggregate::kMax);
+  EXPECT_EQ(run.counter_defs()[2].aggregate, Aggregate::kSum);
+  EXPECT_EQ(run.counter_defs()[3].aggregate, Aggregate::kLast);
   EXPECT_DOUBLE_EQ(run.counters[0], (n + 1) / 2.0);
+  EXPECT_DOUBLE_EQ(run.counters[1], n);
+  EXPECT_DOUBLE_EQ(run.counters[2], n * (n + 1) / 2.0);
+  EXPECT_DOUBLE_EQ(run.counters[3], n);
 }
 
 // Every declared key reaches the plugin, in its order, given or defaulted, in canonical form.
@@ -144,7 +152,11 @@ INSTANTIATE_TEST_SUITE_P(
               "name holds 'G'"},
         Fault{"key_default", "key gain: its default: gain: 20 is out of range [0, 10]"},
         Fault{"key_range", "key substeps: its range [8, 1] is not two whole numbers"},
-        Fault{"key_type", "key substeps: its type is 7"}, Fault{"size", "its cb_engine is"},
+        Fault{"key_type", "key substeps: its type is 7"},
+        Fault{"counter_aggregate", "counter steps_so_far: its aggregate is 9 (CB_AGG_MEAN 0"},
+        Fault{"counter_description",
+              "counter steps_so_far: its description holds the non-printable byte 0x0a"},
+        Fault{"size", "its cb_engine is"},
         Fault{"null_function", "leaves a required function null"},
         Fault{"bad_counter", "counter 0 has no valid name"},
         Fault{"create", "could not build scene flight: this plugin builds no worlds"},

@@ -39,10 +39,12 @@
 #define FAULT_ERROR_ESCAPE 25      /* refuses every world with terminal escapes in the message */
 #define FAULT_ABI1 26              /* built for ABI 1, which had no declared keys */
 /* Declared keys that are not what the contract allows. */
-#define FAULT_KEY_NAME 27    /* a key named "Gain" */
-#define FAULT_KEY_DEFAULT 28 /* gain's default, 20, outside its range [0, 10] */
-#define FAULT_KEY_RANGE 29   /* substeps' range [8, 1] */
-#define FAULT_KEY_TYPE 30    /* a key of type 7 */
+#define FAULT_KEY_NAME 27            /* a key named "Gain" */
+#define FAULT_KEY_DEFAULT 28         /* gain's default, 20, outside its range [0, 10] */
+#define FAULT_KEY_RANGE 29           /* substeps' range [8, 1] */
+#define FAULT_KEY_TYPE 30            /* a key of type 7 */
+#define FAULT_COUNTER_AGGREGATE 31   /* a counter aggregated by 9 */
+#define FAULT_COUNTER_DESCRIPTION 32 /* a counter whose description holds a newline */
 
 #ifndef TEST_PLUGIN_FAULT
 #define TEST_PLUGIN_FAULT FAULT_NONE
@@ -160,12 +162,6 @@ static uint32_t read_state(const cb_world* w, double* positions, double* velocit
   return TEST_PLUGIN_FAULT == FAULT_COUNT ? w->count + 1 : w->count;
 }
 
-static void read_counters(const cb_world* w, double* values) {
-  values[0] = (double)w->steps;
-  if (TEST_PLUGIN_FAULT == FAULT_COUNTER_NAN && w->steps >= 2) values[0] = NAN;
-  if (TEST_PLUGIN_FAULT == FAULT_COUNTER_DUPLICATE) values[1] = 1.0;
-}
-
 static void destroy(cb_world* w) {
   if (!w) return;
   free(w->bodies);
@@ -185,17 +181,28 @@ static void destroy(cb_world* w) {
 static const char unterminated[4096] = {LONG1K, LONG1K, LONG1K, LONG1K};
 #endif
 
+/* Without a fault: the steps taken, once per aggregate, so that each aggregate has a known
+ * answer over n steps: mean (n + 1) / 2, max n, sum n (n + 1) / 2, last n. */
 #if TEST_PLUGIN_FAULT == FAULT_BAD_COUNTER
-static const char* const counter_names[] = {"steps so far"};
+static const cb_counter counters[] = {{"steps so far", "steps taken", CB_AGG_MEAN}};
 #elif TEST_PLUGIN_FAULT == FAULT_COUNTER_UNTERMINATED
-static const char* const counter_names[] = {unterminated};
+static const cb_counter counters[] = {{unterminated, "steps taken", CB_AGG_MEAN}};
 #elif TEST_PLUGIN_FAULT == FAULT_COUNTER_DUPLICATE
-static const char* const counter_names[] = {"steps_so_far", "steps_so_far"};
+static const cb_counter counters[] = {{"steps_so_far", "steps taken", CB_AGG_MEAN},
+                                      {"steps_so_far", "steps taken", CB_AGG_MAX}};
 #elif TEST_PLUGIN_FAULT == FAULT_COUNTER_RESERVED
-static const char* const counter_names[] = {"budget_hits"};
+static const cb_counter counters[] = {{"budget_hits", "steps taken", CB_AGG_MEAN}};
+#elif TEST_PLUGIN_FAULT == FAULT_COUNTER_AGGREGATE
+static const cb_counter counters[] = {{"steps_so_far", "steps taken", 9}};
+#elif TEST_PLUGIN_FAULT == FAULT_COUNTER_DESCRIPTION
+static const cb_counter counters[] = {{"steps_so_far", "steps\ntaken", CB_AGG_MEAN}};
 #else
-static const char* const counter_names[] = {"steps_so_far"};
+static const cb_counter counters[] = {{"steps_so_far", "steps taken, mean", CB_AGG_MEAN},
+                                      {"steps_max", "steps taken, largest", CB_AGG_MAX},
+                                      {"steps_sum", "steps taken, summed", CB_AGG_SUM},
+                                      {"steps_last", "steps taken, last", CB_AGG_LAST}};
 #endif
+#define COUNTER_COUNT (sizeof counters / sizeof counters[0])
 
 /* Keys it declares; the ballistic integrator ignores them, but label=echo shows what arrived. */
 static const cb_key keys[] = {
@@ -214,6 +221,13 @@ static const cb_key keys[] = {
 #define PLUGIN_NAME "ballistic"
 #endif
 
+static void read_counters(const cb_world* w, double* values) {
+  size_t k;
+  for (k = 0; k < COUNTER_COUNT; ++k)
+    values[k] = (double)w->steps;
+  if (TEST_PLUGIN_FAULT == FAULT_COUNTER_NAN && w->steps >= 2) values[0] = NAN;
+}
+
 static const cb_engine engine = {
     .abi = TEST_PLUGIN_FAULT == FAULT_ABI    ? CHAINBENCH_PLUGIN_ABI + 1
            : TEST_PLUGIN_FAULT == FAULT_ABI1 ? 1
@@ -222,8 +236,8 @@ static const cb_engine engine = {
     .name = PLUGIN_NAME,
     .capabilities =
         CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES | (TEST_PLUGIN_FAULT == FAULT_CAPABILITY ? 256u : 0u),
-    .counter_count = sizeof counter_names / sizeof counter_names[0],
-    .counter_names = counter_names,
+    .counter_count = COUNTER_COUNT,
+    .counters = counters,
     .key_count = sizeof keys / sizeof keys[0],
     .keys = keys,
     .create = create,

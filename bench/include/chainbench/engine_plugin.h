@@ -54,6 +54,19 @@ typedef struct cb_body {
   double restitution;     /* in [0, 1] */
 } cb_body;
 
+/* How chainbench sums a counter's per-step values up over a run (cb_counter.aggregate). */
+enum { CB_AGG_MEAN = 0, CB_AGG_MAX = 1, CB_AGG_SUM = 2, CB_AGG_LAST = 3 };
+
+/* A figure the plugin reports about every step, e.g. pair pushes. Every string is printable ASCII.
+ */
+typedef struct cb_counter {
+  /* [a-z0-9_], terminated within 32 bytes, distinct, none of budget_hits and crush_events (kept
+   * for the chain solver's counters). */
+  const char* name;
+  const char* description; /* one line, terminated within 128 bytes */
+  int32_t aggregate;       /* CB_AGG_MEAN per step, MAX of any step, SUM over the run, LAST step */
+} cb_counter;
+
 /* Types of a key's value (cb_key.type). */
 enum { CB_KEY_NUMBER = 0, CB_KEY_INTEGER = 1, CB_KEY_TEXT = 2 };
 
@@ -92,11 +105,9 @@ typedef struct cb_engine {
   uint32_t size; /* sizeof(cb_engine) */
   /* Shown in messages, e.g. "relaxation": printable ASCII, terminated within 64 bytes. */
   const char* name;
-  uint32_t capabilities;  /* CB_CAN_* only: an unknown bit is refused */
-  uint32_t counter_count; /* named figures read_counters reports per step (<= 16) */
-  /* counter_count distinct names, [a-z0-9_], terminated within 32 bytes, none of budget_hits and
-   * crush_events (kept for the chain solver's counters); reported as per-step means. */
-  const char* const* counter_names;
+  uint32_t capabilities;      /* CB_CAN_* only: an unknown bit is refused */
+  uint32_t counter_count;     /* figures read_counters reports per step (<= 16) */
+  const cb_counter* counters; /* counter_count counters, in the order read_counters writes them */
   uint32_t key_count; /* keys a spec may give (<= 32); a spec key it does not declare is refused */
   const cb_key* keys; /* key_count keys, listed by `chainbench engines plugin:path=FILE` */
 

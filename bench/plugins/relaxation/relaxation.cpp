@@ -126,7 +126,7 @@ std::uint32_t read_state(const cb_world* w, double* positions, double* velocitie
   return n;
 }
 
-const char* const kCounterNames[] = {"pushes"};
+const cb_counter kCounters[] = {{"pushes", "pair pushes in a step", CB_AGG_MEAN}};
 
 void read_counters(const cb_world* w, double* values) {
   values[0] = w->pushes;
@@ -145,7 +145,7 @@ const cb_engine kEngine = {CHAINBENCH_PLUGIN_ABI,
                            "relaxation",
                            CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES,
                            1,
-                           kCounterNames,
+                           kCounters,
                            1,
                            kKeys,
                            create,

@@ -394,6 +394,7 @@ EngineDef register_plugin() {
       "your own resolver, from a shared library built against chainbench/engine_plugin.h";
   e.keys = {file_key("path", "the plugin's shared library (.so)")};
   e.more_keys = [](const EngineSpec& spec) { return load_plugin(spec.get("path"))->keys; };
+  e.spec_counters = [](const EngineSpec& spec) { return load_plugin(spec.get("path"))->counters; };
   e.isolated = true;
   e.capabilities = [](const EngineSpec& spec) {
     const std::uint32_t can = load_plugin(spec.get("path"))->api->capabilities;

@@ -73,7 +73,10 @@ struct EngineDef {
   // defaulted and listed as `keys` are, after them. Called with the declared keys parsed.
   std::function<std::vector<KeyDef>(const EngineSpec&)> more_keys;
   std::function<Capabilities(const EngineSpec&)> capabilities;
-  std::vector<CounterDef> counters;  // what its engines count (a plugin's, once loaded)
+  std::vector<CounterDef> counters;  // what its engines count
+  // What an engine of `spec` counts when it follows from the spec (a plugin's, from its library);
+  // when set, it stands for `counters`.
+  std::function<std::vector<CounterDef>(const EngineSpec&)> spec_counters;
   // How its times must be read, said beside every figure that quotes them (run JSON "caveat",
   // `chainbench engines`, the benchmark's context, the report's and README's ratios); or empty.
   std::string caveat;

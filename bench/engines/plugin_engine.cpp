@@ -16,7 +16,10 @@
 
 #include <dlfcn.h>
 
+#include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -262,8 +265,21 @@ class PluginEngine final : public Engine {
     std::vector<cb_body> bodies;
     bodies.reserve(scene.bodies.size());
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-      bodies.push_back(to_plugin(scene, scene.bodies[i]));
       names_[i] = scene.bodies[i].name;
+      bodies.push_back(to_plugin(scene, scene.bodies[i]));
+      bodies.back().name = names_[i].c_str();
+    }
+    std::vector<cb_driver> drivers;
+    for (const Driver& d : scene.drivers) {
+      cb_driver out{};
+      out.body = static_cast<std::uint32_t>(d.body);
+      out.axes =
+          (d.hold_x ? std::uint32_t{CB_AXIS_X} : 0u) | (d.hold_y ? std::uint32_t{CB_AXIS_Y} : 0u);
+      out.velocity[0] = d.hold_x ? d.velocity.x : 0.0;
+      out.velocity[1] = d.hold_y ? d.velocity.y : 0.0;
+      out.from_step = std::clamp(d.from_step, 0, INT32_MAX);
+      out.to_step = std::clamp(d.to_step, 0, INT32_MAX);
+      drivers.push_back(out);
     }
     std::vector<cb_setting> settings;
     for (const auto& [key, value] : spec.settings) {
@@ -278,6 +294,9 @@ class PluginEngine final : public Engine {
     desc.bodies = bodies.data();
     desc.setting_count = static_cast<std::uint32_t>(settings.size());
     desc.settings = settings.data();
+    desc.steps = scene.steps;
+    desc.driver_count = static_cast<std::uint32_t>(drivers.size());
+    desc.drivers = drivers.data();
     char error[kErrorSize] = "";
     world_ = plugin_.api->create(&desc, error, sizeof error);
     if (!world_) {

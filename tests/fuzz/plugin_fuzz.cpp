@@ -88,6 +88,12 @@ double number() {
 cb_world* fake_create(const cb_world_desc* desc, char* error, std::size_t error_size) {
   require(desc && desc->abi == CHAINBENCH_PLUGIN_ABI, "create got no description, or another ABI");
   g.body_count = desc->body_count;
+  // The scene below: 8 steps, player (body 1) driven on both axes, every body named.
+  require(desc->steps == 8 && desc->driver_count == 1 && desc->drivers[0].body == 1 &&
+              desc->drivers[0].axes == (CB_AXIS_X | CB_AXIS_Y) && desc->drivers[0].velocity[0] == 2,
+          "create got another scene's steps or drivers");
+  for (std::uint32_t i = 0; i < desc->body_count; ++i)
+    require(desc->bodies[i].name && desc->bodies[i].name[0], "a body came without its name");
   require(desc->setting_count == g.key_count, "create got other settings than the declared keys");
   if (g.bytes.pick(8) == 0) {
     write_error(error, error_size);

@@ -86,6 +86,30 @@ TEST(Plugin, SettingsReachThePluginWithDefaultsFilledIn) {
   EXPECT_EQ(parse_engine_spec(spec.str()), spec);
 }
 
+// The world's description carries the scene's step count, every body's name and the drivers
+// (body, axes held, velocity, steps), which the describe label makes the plugin echo.
+TEST(Plugin, TheDescriptionCarriesNamesDriversAndSteps) {
+  Scene s = flight();
+  s.drivers[0].from_step = 2;
+  s.drivers[0].to_step = 20;
+  try {
+    run_engine(s, parse_engine_spec(plugin_spec("none") + ",label=describe"), RunOptions{});
+    FAIL() << "label=describe did not reach the plugin";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("steps 30, bodies ball cart lift, driver body 1 axes 1 "
+                                         "velocity 3 0 steps 2 to 20"),
+              std::string::npos)
+        << e.what();
+  }
+  // A driver without an end holds to INT32_MAX.
+  try {
+    run_engine(flight(), parse_engine_spec(plugin_spec("none") + ",label=describe"), RunOptions{});
+    ADD_FAILURE() << "label=describe did not reach the plugin";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("steps 0 to 2147483647"), std::string::npos) << e.what();
+  }
+}
+
 // A key the plugin does not declare, or a value outside what it declares, is refused when the
 // spec is read, naming the spec (so the plugin's library), the key and why.
 TEST(Plugin, AnUndeclaredKeyOrABadValueIsRefusedWhenTheSpecIsRead) {

@@ -86,6 +86,23 @@ static cb_world* create(const cb_world_desc* desc, char* error, size_t error_siz
     write_error(error, error_size, message);
     return NULL;
   }
+  /* label=describe: refuses the world with what its description says of the scene. */
+  if (desc->setting_count == 3 && strcmp(desc->settings[2].value, "describe") == 0) {
+    char message[512];
+    size_t used = (size_t)snprintf(message, sizeof message, "steps %d, bodies", (int)desc->steps);
+    uint32_t i;
+    for (i = 0; i < desc->body_count && used < sizeof message; ++i)
+      used += (size_t)snprintf(message + used, sizeof message - used, " %s", desc->bodies[i].name);
+    for (i = 0; i < desc->driver_count && used < sizeof message; ++i) {
+      const cb_driver* d = &desc->drivers[i];
+      used += (size_t)snprintf(message + used, sizeof message - used,
+                               ", driver body %u axes %u velocity %g %g steps %d to %d",
+                               (unsigned)d->body, (unsigned)d->axes, d->velocity[0], d->velocity[1],
+                               (int)d->from_step, (int)d->to_step);
+    }
+    write_error(error, error_size, message);
+    return NULL;
+  }
   w = (cb_world*)calloc(1, sizeof *w);
   if (!w) return NULL;
   w->count = desc->body_count;

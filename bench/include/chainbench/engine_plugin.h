@@ -52,7 +52,18 @@ typedef struct cb_body {
   double gravity_scale;   /* multiplies gravity for this body (dynamic bodies) */
   double friction;        /* >= 0, as the scene gives it */
   double restitution;     /* in [0, 1] */
+  const char* name; /* the scene's name for it: printable ASCII, terminated; kept until destroy */
 } cb_body;
+
+/* What a scene's driver holds: chainbench sets it through set_velocity at the start of every step
+ * from from_step to to_step - 1; a plugin may read it to plan ahead, but need not. */
+typedef struct cb_driver {
+  uint32_t body;      /* the driven body's index */
+  uint32_t axes;      /* CB_AXIS_X | CB_AXIS_Y: the axes it holds; the other is left free */
+  double velocity[2]; /* m/s along the held axes (0 on a free one) */
+  int32_t from_step;  /* >= 0: the first step it holds at, counted from 0 */
+  int32_t to_step;    /* > from_step: it holds before this step; INT32_MAX: to the end */
+} cb_driver;
 
 /* How chainbench sums a counter's per-step values up over a run (cb_counter.aggregate). */
 enum { CB_AGG_MEAN = 0, CB_AGG_MAX = 1, CB_AGG_SUM = 2, CB_AGG_LAST = 3 };
@@ -92,9 +103,12 @@ typedef struct cb_world_desc {
   double gravity[2];     /* m/s^2 */
   double dt;             /* s, the length of every step */
   int32_t rotation;      /* nonzero: the scene lets bodies turn */
-  const cb_body* bodies; /* body_count bodies, in scene order */
+  const cb_body* bodies; /* body_count bodies, in scene order; valid during create only */
   uint32_t setting_count;
-  const cb_setting* settings;
+  const cb_setting* settings; /* every declared key, in declaration order */
+  int32_t steps;              /* > 0: the steps the scene runs (a run may stop earlier) */
+  uint32_t driver_count;
+  const cb_driver* drivers; /* driver_count drivers, in scene order */
 } cb_world_desc;
 
 /* A plugin's world, opaque to chainbench. */

@@ -159,6 +159,10 @@ Plugin check_table(const cb_engine* api, const std::string& path) {
     throw InputError(describe(p) + ": reports " + std::to_string(p.api->counter_count) +
                      " counters, more than " + std::to_string(kMaxCounters));
   }
+  if ((p.api->capabilities & CB_CAN_LIFETIMES) && (!p.api->add_body || !p.api->remove_body)) {
+    throw InputError(describe(p) + ": sets CB_CAN_LIFETIMES and leaves " +
+                     (p.api->add_body ? "remove_body" : "add_body") + " null");
+  }
   if (const std::uint32_t unknown = p.api->capabilities & ~known_capabilities()) {
     throw InputError(describe(p) + ": sets capability bits " + std::to_string(unknown) +
                      " that this chainbench does not know (it knows CB_CAN_*, " +
@@ -249,6 +253,8 @@ cb_body to_plugin(const Scene& scene, const SceneBody& b) {
   out.gravity_scale = b.gravity_scale;
   out.friction = scene.friction_of(b);
   out.restitution = scene.restitution_of(b);
+  out.from_step = std::clamp(b.from_step, 0, INT32_MAX);
+  out.to_step = std::clamp(b.to_step, 0, INT32_MAX);
   return out;
 }
 
@@ -259,6 +265,7 @@ class PluginEngine final : public Engine {
         plugin_(*owner_),
         drives_(scene),
         names_(scene.bodies.size()),
+        in_world_(scene.bodies.size()),
         positions_(2 * scene.bodies.size()),
         velocities_(2 * scene.bodies.size()),
         counters_(plugin_.counters.size()) {
@@ -266,6 +273,7 @@ class PluginEngine final : public Engine {
     bodies.reserve(scene.bodies.size());
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
       names_[i] = scene.bodies[i].name;
+      in_world_[i] = scene.bodies[i].from_step == 0;
       bodies.push_back(to_plugin(scene, scene.bodies[i]));
       bodies.back().name = names_[i].c_str();
     }
@@ -346,6 +354,7 @@ class PluginEngine final : public Engine {
                        " bodies, the scene " + std::to_string(n));
     }
     for (std::size_t i = 0; i < n; ++i) {
+      if (!in_world_[i]) continue;  // its entry is the plugin's to leave
       const double values[5] = {positions_[2 * i], positions_[2 * i + 1], velocities_[2 * i],
                                 velocities_[2 * i + 1], out.angle[i]};
       for (const double v : values) {
@@ -373,18 +382,29 @@ class PluginEngine final : public Engine {
     return counters_;
   }
   bool degraded() const override { return degraded_; }
-  // Never called: plugins lack Capabilities::lifetimes, so such scenes are refused before.
-  void add_body(std::size_t) override { throw std::logic_error("plugin: no add_body in ABI 1"); }
-  void remove_body(std::size_t) override {
-    throw std::logic_error("plugin: no remove_body in ABI 1");
-  }
+  // Called only for a plugin with CB_CAN_LIFETIMES, whose table then has both (check_table).
+  void add_body(std::size_t index) override { change(index, true); }
+  void remove_body(std::size_t index) override { change(index, false); }
 
  private:
+  void change(std::size_t index, bool add) {
+    const auto body = static_cast<std::uint32_t>(index);
+    const int rc =
+        add ? plugin_.api->add_body(world_, body) : plugin_.api->remove_body(world_, body);
+    if (rc != 0) {
+      throw InputError(describe(plugin_) + ": refused to " + (add ? "add" : "remove") + " body " +
+                       names_[index] + " (" + (add ? "add_body" : "remove_body") + " returned " +
+                       std::to_string(rc) + ")");
+    }
+    in_world_[index] = add ? 1 : 0;
+  }
+
   std::shared_ptr<const Plugin> owner_;
   const Plugin& plugin_;
   cb_world* world_ = nullptr;
   DriveSchedule drives_;
   std::vector<std::string> names_;
+  std::vector<char> in_world_;  // per body: in the plugin's world now
   mutable std::vector<double> positions_, velocities_, counters_;
   bool degraded_ = false;
   int steps_ = 0;  // steps taken, for messages
@@ -423,12 +443,13 @@ EngineDef register_plugin() {
     c.restitution = (can & CB_CAN_RESTITUTION) != 0;
     c.kinematic = (can & CB_CAN_KINEMATIC) != 0;
     c.axis_drives = (can & CB_CAN_AXIS_DRIVES) != 0;
+    c.lifetimes = (can & CB_CAN_LIFETIMES) != 0;  // with add_body and remove_body (check_table)
     return c;
   };
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
     return std::make_unique<PluginEngine>(load_plugin(spec.get("path")), spec, scene);
   };
-  // No add or remove in ABI 1: missing_capability refuses scenes whose bodies come and go.
+  // Without CB_CAN_LIFETIMES, missing_capability refuses scenes whose bodies come and go.
   return e;
 }
 

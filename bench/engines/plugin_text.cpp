@@ -82,7 +82,7 @@ std::string counter_name_problem(const std::string& name) {
 
 std::uint32_t known_capabilities() {
   return CB_CAN_ROTATE | CB_CAN_FRICTION | CB_CAN_RESTITUTION | CB_CAN_KINEMATIC |
-         CB_CAN_AXIS_DRIVES;
+         CB_CAN_AXIS_DRIVES | CB_CAN_LIFETIMES;
 }
 
 }  // namespace chainbench

@@ -141,6 +141,12 @@ void fake_read_counters(const cb_world*, double* values) {
     values[k] = number();
 }
 
+// The scene has no bodies that come and go: chainbench must never call it.
+int fake_change(cb_world*, std::uint32_t) {
+  require(false, "add_body or remove_body called for a scene whose bodies stay");
+  return 1;
+}
+
 void fake_destroy(cb_world* world) {
   require(world == reinterpret_cast<cb_world*>(&g.world_tag), "destroy of a foreign world");
 }
@@ -175,7 +181,7 @@ cb_engine fake_table(std::vector<cb_counter>& counters, std::vector<cb_key>& key
   t.abi = g.bytes.pick(32) == 0 ? g.bytes.byte() : CHAINBENCH_PLUGIN_ABI;
   t.size = g.bytes.pick(32) == 0 ? g.bytes.byte() : static_cast<std::uint32_t>(sizeof(cb_engine));
   t.name = g.bytes.pick(8) == 0 ? nullptr : text_block(64);
-  t.capabilities = g.bytes.pick(16) == 0 ? 0xffffffffu : g.bytes.byte() & 31u;
+  t.capabilities = g.bytes.pick(16) == 0 ? 0xffffffffu : g.bytes.byte() & 63u;
   counter_count = static_cast<std::uint32_t>(g.bytes.pick(20));
   for (std::uint32_t k = 0; k < counter_count; ++k) {
     cb_counter c{};
@@ -194,6 +200,8 @@ cb_engine fake_table(std::vector<cb_counter>& counters, std::vector<cb_key>& key
   t.read_state = fake_read_state;
   t.read_counters = fake_read_counters;
   t.destroy = fake_destroy;
+  t.add_body = g.bytes.pick(8) == 0 ? nullptr : fake_change;
+  t.remove_body = g.bytes.pick(8) == 0 ? nullptr : fake_change;
   switch (g.bytes.pick(64)) {  // now and then one function missing
     case 0:
       t.create = nullptr;
@@ -259,6 +267,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(table.abi == CHAINBENCH_PLUGIN_ABI && table.size == sizeof(cb_engine),
             "a table of another ABI or size was accepted");
     require(table.counter_count <= 16, "more than 16 counters were accepted");
+    require(!(table.capabilities & CB_CAN_LIFETIMES) || (table.add_body && table.remove_body),
+            "CB_CAN_LIFETIMES was accepted without add_body and remove_body");
     require(table.key_count <= 32 && table.key_count > 0 && table.keys,
             "a spec key was accepted that the table does not declare, or over 32 keys");
     require(engine->counter_defs().size() == table.counter_count, "counters lost or invented");

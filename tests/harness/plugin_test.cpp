@@ -110,6 +110,42 @@ TEST(Plugin, TheDescriptionCarriesNamesDriversAndSteps) {
   }
 }
 
+// Bodies that come and go reach a plugin with CB_CAN_LIFETIMES through add_body and remove_body:
+// a ball entering at step 10 falls for the 20 steps it takes part in, from where the scene puts
+// it; a cart leaving at step 12 stays where 12 steps took it.
+TEST(Plugin, BodiesComeAndGoThroughAddAndRemove) {
+  Scene s = flight();
+  s.bodies[0].from_step = 10;
+  s.bodies[1].to_step = 12;
+  s.drivers.clear();
+  Expectation left;  // the cart's last state, 12, where 12 steps of its fall took it
+  left.kind = Expectation::Kind::kCenter;
+  left.body = 1;
+  left.center = {10.0, fallen(10, 0, -5, s.dt, 12)};
+  left.tolerance = 1e-9;
+  left.from_step = 12;
+  left.to_step = 12;
+  s.expect.push_back(left);
+  const EngineRun run = run_engine(s, parse_engine_spec(plugin_spec("none")), RunOptions{});
+  ASSERT_FALSE(run.failure);
+  ASSERT_EQ(run.final_positions.size(), 3u);
+  EXPECT_NEAR(run.final_positions[0].x, 0.0 + 20 * s.dt * 1.0, 1e-9);
+  EXPECT_NEAR(run.final_positions[0].y, fallen(10, 2, -10, s.dt, 20), 1e-9);
+  ASSERT_TRUE(run.expect.has_value());
+  EXPECT_TRUE(run.expect->pass) << run.expect->max_error;
+  // Removed, it fell no further: its final entry is not the 30-step fall.
+  EXPECT_GT(std::abs(run.final_positions[1].y - fallen(10, 0, -5, s.dt, 30)), 1.0);
+  // A plugin that refuses to add a body stops the run naming it.
+  try {
+    run_engine(s, parse_engine_spec(plugin_spec("add_refused")), RunOptions{});
+    FAIL() << "a refused add_body went unnoticed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("refused to add body ball (add_body returned 1)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // A key the plugin does not declare, or a value outside what it declares, is refused when the
 // spec is read, naming the spec (so the plugin's library), the key and why.
 TEST(Plugin, AnUndeclaredKeyOrABadValueIsRefusedWhenTheSpecIsRead) {
@@ -178,6 +214,7 @@ INSTANTIATE_TEST_SUITE_P(
         Fault{"key_range", "key substeps: its range [8, 1] is not two whole numbers"},
         Fault{"key_type", "key substeps: its type is 7"},
         Fault{"counter_aggregate", "counter steps_so_far: its aggregate is 9 (CB_AGG_MEAN 0"},
+        Fault{"lifetimes_null", "sets CB_CAN_LIFETIMES and leaves remove_body null"},
         Fault{"counter_description",
               "counter steps_so_far: its description holds the non-printable byte 0x0a"},
         Fault{"size", "its cb_engine is"},

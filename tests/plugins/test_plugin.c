@@ -45,6 +45,8 @@
 #define FAULT_KEY_TYPE 30            /* a key of type 7 */
 #define FAULT_COUNTER_AGGREGATE 31   /* a counter aggregated by 9 */
 #define FAULT_COUNTER_DESCRIPTION 32 /* a counter whose description holds a newline */
+#define FAULT_LIFETIMES_NULL 33      /* CB_CAN_LIFETIMES without remove_body */
+#define FAULT_ADD_REFUSED 34         /* add_body refuses every body */
 
 #ifndef TEST_PLUGIN_FAULT
 #define TEST_PLUGIN_FAULT FAULT_NONE
@@ -56,6 +58,7 @@ struct cb_world {
   double dt;
   int steps;
   cb_body* bodies;
+  char* alive; /* per body: in the world now */
 };
 
 static void write_error(char* error, size_t size, const char* text) {
@@ -115,6 +118,14 @@ static cb_world* create(const cb_world_desc* desc, char* error, size_t error_siz
     return NULL;
   }
   memcpy(w->bodies, desc->bodies, desc->body_count * sizeof(cb_body));
+  w->alive = (char*)calloc(desc->body_count ? desc->body_count : 1, 1);
+  if (!w->alive) {
+    free(w->bodies);
+    free(w);
+    return NULL;
+  }
+  for (uint32_t i = 0; i < desc->body_count; ++i)
+    w->alive[i] = desc->bodies[i].from_step == 0;
   return w;
 }
 
@@ -150,7 +161,7 @@ static int step(cb_world* w, char* error, size_t error_size) {
   }
   for (i = 0; i < w->count; ++i) {
     cb_body* b = &w->bodies[i];
-    if (b->kind == CB_STATIC) continue;
+    if (b->kind == CB_STATIC || !w->alive[i]) continue;
     if (b->kind == CB_DYNAMIC) {
       b->velocity[0] += w->dt * b->gravity_scale * w->gravity[0];
       b->velocity[1] += w->dt * b->gravity_scale * w->gravity[1];
@@ -166,6 +177,7 @@ static uint32_t read_state(const cb_world* w, double* positions, double* velocit
                            uint32_t capacity) {
   uint32_t i;
   for (i = 0; i < w->count && i < capacity; ++i) {
+    if (!w->alive[i]) continue;
     if (positions) {
       positions[2 * i] = w->bodies[i].center[0];
       positions[2 * i + 1] = w->bodies[i].center[1];
@@ -179,8 +191,22 @@ static uint32_t read_state(const cb_world* w, double* positions, double* velocit
   return TEST_PLUGIN_FAULT == FAULT_COUNT ? w->count + 1 : w->count;
 }
 
+/* A body enters as create described it: it has not moved while out of the world. */
+static int add_body(cb_world* w, uint32_t body) {
+  if (TEST_PLUGIN_FAULT == FAULT_ADD_REFUSED || body >= w->count || w->alive[body]) return 1;
+  w->alive[body] = 1;
+  return 0;
+}
+
+static int remove_body(cb_world* w, uint32_t body) {
+  if (body >= w->count || !w->alive[body]) return 1;
+  w->alive[body] = 0;
+  return 0;
+}
+
 static void destroy(cb_world* w) {
   if (!w) return;
+  free(w->alive);
   free(w->bodies);
   free(w);
 }
@@ -251,8 +277,8 @@ static const cb_engine engine = {
                                              : CHAINBENCH_PLUGIN_ABI,
     .size = TEST_PLUGIN_FAULT == FAULT_SIZE ? sizeof(cb_engine) - 8 : sizeof(cb_engine),
     .name = PLUGIN_NAME,
-    .capabilities =
-        CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES | (TEST_PLUGIN_FAULT == FAULT_CAPABILITY ? 256u : 0u),
+    .capabilities = CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES | CB_CAN_LIFETIMES |
+                    (TEST_PLUGIN_FAULT == FAULT_CAPABILITY ? 256u : 0u),
     .counter_count = COUNTER_COUNT,
     .counters = counters,
     .key_count = sizeof keys / sizeof keys[0],
@@ -262,7 +288,9 @@ static const cb_engine engine = {
     .step = TEST_PLUGIN_FAULT == FAULT_NULL_FUNCTION ? NULL : step,
     .read_state = read_state,
     .read_counters = read_counters,
-    .destroy = destroy};
+    .destroy = destroy,
+    .add_body = add_body,
+    .remove_body = TEST_PLUGIN_FAULT == FAULT_LIFETIMES_NULL ? NULL : remove_body};
 
 #if TEST_PLUGIN_FAULT == FAULT_NO_ENTRY
 CHAINBENCH_PLUGIN_EXPORT const cb_engine* not_the_entry_point(void) {

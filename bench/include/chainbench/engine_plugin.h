@@ -33,11 +33,12 @@ enum { CB_STATIC = 0, CB_KINEMATIC = 1, CB_DYNAMIC = 2 };
 /* What a plugin can simulate (cb_engine.capabilities). A scene that needs more is refused by
  * chainbench with a message, so a plugin never sees what it cannot do. */
 enum {
-  CB_CAN_ROTATE = 1,      /* bodies turn when cb_world_desc.rotation is set */
-  CB_CAN_FRICTION = 2,    /* cb_body.friction is honoured */
-  CB_CAN_RESTITUTION = 4, /* cb_body.restitution is honoured */
-  CB_CAN_KINEMATIC = 8,   /* CB_KINEMATIC bodies */
-  CB_CAN_AXIS_DRIVES = 16 /* set_velocity with one axis only */
+  CB_CAN_ROTATE = 1,       /* bodies turn when cb_world_desc.rotation is set */
+  CB_CAN_FRICTION = 2,     /* cb_body.friction is honoured */
+  CB_CAN_RESTITUTION = 4,  /* cb_body.restitution is honoured */
+  CB_CAN_KINEMATIC = 8,    /* CB_KINEMATIC bodies */
+  CB_CAN_AXIS_DRIVES = 16, /* set_velocity with one axis only */
+  CB_CAN_LIFETIMES = 32    /* bodies that come and go: add_body and remove_body are given */
 };
 
 /* Axes of a velocity to set (set_velocity). */
@@ -53,6 +54,10 @@ typedef struct cb_body {
   double friction;        /* >= 0, as the scene gives it */
   double restitution;     /* in [0, 1] */
   const char* name; /* the scene's name for it: printable ASCII, terminated; kept until destroy */
+  /* Its life: in the world for steps from_step <= n < to_step. create builds the bodies of
+   * from_step 0 only; the others enter through add_body (CB_CAN_LIFETIMES). */
+  int32_t from_step; /* >= 0 */
+  int32_t to_step;   /* > from_step; INT32_MAX: to the end */
 } cb_body;
 
 /* What a scene's driver holds: chainbench sets it through set_velocity at the start of every step
@@ -138,14 +143,19 @@ typedef struct cb_engine {
    * create). Any other value is refused. */
   int (*step)(cb_world* world, char* error, size_t error_size);
   /* Writes the state of the first `capacity` bodies: positions and velocities as x, y pairs,
-   * angles in radians (any of the three may be NULL: skip it). Returns how many bodies the world
-   * holds, which must equal body_count. */
+   * angles in radians (any of the three may be NULL: skip it); the entries of bodies not in the
+   * world now are not read. Returns body_count (every index, in the world or not). */
   uint32_t (*read_state)(const cb_world* world, double* positions, double* velocities,
                          double* angles, uint32_t capacity);
   /* Writes counter_count finite values about the last step (NaN or infinity is refused); may be
    * NULL when counter_count is 0. */
   void (*read_counters)(const cb_world* world, double* values);
   void (*destroy)(cb_world* world);
+  /* Bodies that come and go, by index: add_body puts body (not in the world) in as desc described
+   * it (centre, velocity), before step from_step; remove_body takes it out before step to_step.
+   * 0, or nonzero for a bad body. Both given with CB_CAN_LIFETIMES, else may be NULL. */
+  int (*add_body)(cb_world* world, uint32_t body);
+  int (*remove_body)(cb_world* world, uint32_t body);
 } cb_engine;
 
 /* The one function a plugin exports. */

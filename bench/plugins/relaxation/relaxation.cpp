@@ -153,7 +153,9 @@ const cb_engine kEngine = {CHAINBENCH_PLUGIN_ABI,
                            step,
                            read_state,
                            read_counters,
-                           destroy};
+                           destroy,
+                           nullptr,   // add_body: no CB_CAN_LIFETIMES, so chainbench refuses
+                           nullptr};  // scenes whose bodies come and go
 
 }  // namespace
 

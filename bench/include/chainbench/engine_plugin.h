@@ -13,7 +13,9 @@
  * library is C: a plugin can be written in C, C++ or anything that exports C functions.
  *
  * Versioning: CHAINBENCH_PLUGIN_ABI changes whenever a structure or a function here changes; a
- * plugin built against another version is refused with a message, never called.
+ * plugin built against another version is refused with a message naming both, never called.
+ * ABI 2 added declared keys and counters' aggregates, body names, drivers, the step count and
+ * bodies that come and go.
  */
 #ifndef CHAINBENCH_ENGINE_PLUGIN_H
 #define CHAINBENCH_ENGINE_PLUGIN_H
@@ -53,7 +55,7 @@ typedef struct cb_body {
   double gravity_scale;   /* multiplies gravity for this body (dynamic bodies) */
   double friction;        /* >= 0, as the scene gives it */
   double restitution;     /* in [0, 1] */
-  const char* name; /* the scene's name for it: printable ASCII, terminated; kept until destroy */
+  const char* name;       /* the scene's, printable ASCII, terminated; kept until destroy */
   /* Its life: in the world for steps from_step <= n < to_step. create builds the bodies of
    * from_step 0 only; the others enter through add_body (CB_CAN_LIFETIMES). */
   int32_t from_step; /* >= 0 */
@@ -73,8 +75,7 @@ typedef struct cb_driver {
 /* How chainbench sums a counter's per-step values up over a run (cb_counter.aggregate). */
 enum { CB_AGG_MEAN = 0, CB_AGG_MAX = 1, CB_AGG_SUM = 2, CB_AGG_LAST = 3 };
 
-/* A figure the plugin reports about every step, e.g. pair pushes. Every string is printable ASCII.
- */
+/* A figure the plugin reports about every step, e.g. pair pushes; its strings printable ASCII. */
 typedef struct cb_counter {
   /* [a-z0-9_], terminated within 32 bytes, distinct, none of budget_hits and crush_events (kept
    * for the chain solver's counters). */
@@ -92,14 +93,14 @@ typedef struct cb_key {
   int32_t type;     /* CB_KEY_NUMBER, CB_KEY_INTEGER or CB_KEY_TEXT */
   double min;       /* finite, <= max, whole for an integer; unused for text */
   double max;       /* finite; an integer's range within +-2^53 */
-  const char*
-      default_value; /* terminated within 64 bytes; a value the key accepts (text: not "") */
-  const char* help;  /* one line, terminated within 128 bytes */
+  /* Terminated within 64 bytes: a value the key accepts (a text key's is not empty). */
+  const char* default_value;
+  const char* help; /* one line, terminated within 128 bytes */
 } cb_key;
 
 typedef struct cb_setting {
   const char* key;   /* a declared key's name, every one in declaration order */
-  const char* value; /* checked against its cb_key: "4"; a number in its shortest form */
+  const char* value; /* checked against its cb_key: a number in its shortest form, text as typed */
 } cb_setting;
 
 typedef struct cb_world_desc {

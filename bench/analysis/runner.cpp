@@ -136,8 +136,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     if (!totals.empty()) {
       const std::span<const double> values = engine->counters();
       for (std::size_t c = 0; c < totals.size() && c < values.size(); ++c) {
-        totals[c] = counter_defs[c].aggregate == Aggregate::kMax ? std::max(totals[c], values[c])
-                                                                 : totals[c] + values[c];
+        totals[c] = aggregate_step(counter_defs[c].aggregate, totals[c], values[c]);
       }
     }
     const int k = step + 1;  // the state after this step

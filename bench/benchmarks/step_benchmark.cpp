@@ -52,8 +52,7 @@ class CounterTotals {
   void add(const Engine& engine) {
     const std::span<const double> values = engine.counters();
     for (std::size_t c = 0; c < totals_.size() && c < values.size(); ++c) {
-      totals_[c] = defs_[c].aggregate == Aggregate::kMax ? std::max(totals_[c], values[c])
-                                                         : totals_[c] + values[c];
+      totals_[c] = aggregate_step(defs_[c].aggregate, totals_[c], values[c]);
     }
     ++steps_;
   }

@@ -6,6 +6,7 @@
 #include "text_table.h"
 
 #include <iostream>
+#include <memory>
 
 namespace chainbench {
 namespace {
@@ -50,27 +51,59 @@ std::string capabilities(const EngineSpec& spec) {
                    : s;
 }
 
+// Each key's default, as `engines` lists it: "(required)", or its default and those that follow
+// another key's value.
+std::string default_text(const KeyDef& k) {
+  std::string def = k.default_value.empty() ? "(required)" : k.default_value;
+  for (const auto& [when, then] : k.default_when)
+    def += ", " + then + " if " + k.depends_on + "=" + when;
+  return def;
+}
+
+std::string values_text(const KeyDef& k) {
+  if (k.file) return "a file";
+  if (k.text) return "text";
+  std::string values;
+  for (const std::string& c : k.choices)
+    values += (values.empty() ? "" : "|") + c;
+  if (!values.empty()) return values;
+  return "[" + fmt_g(k.min, 9) + ", " + fmt_g(k.max, 9) + "]" + (k.integer ? " whole" : "");
+}
+
+std::string type_text(const KeyDef& k) {
+  if (k.file) return "file";
+  if (k.text) return "text";
+  if (!k.choices.empty()) return "choice";
+  return k.integer ? "integer" : "number";
+}
+
+const char* aggregate_text(Aggregate a) {
+  switch (a) {
+    case Aggregate::kMean:
+      return "mean per step";
+    case Aggregate::kSum:
+      return "sum over the run";
+    case Aggregate::kMax:
+      return "largest of any step";
+    case Aggregate::kLast:
+      return "last step";
+  }
+  return "";
+}
+
 int list_engines() {
   std::cout << "Engines (--engines SPEC,SPEC...; a spec is NAME[:key=value,...])\n";
   for (const EngineDef& e : engine_registry()) {
     std::cout << "\n" << e.name << ": " << e.description << "\n";
     if (!e.caveat.empty()) std::cout << "  caveat: " << e.caveat << "\n";
     TextTable t({"  key", "default", "values", "meaning"});
-    for (const KeyDef& k : e.keys) {
-      std::string values;
-      for (const std::string& c : k.choices)
-        values += (values.empty() ? "" : "|") + c;
-      if (k.file) {
-        values = "a file";
-      } else if (values.empty()) {
-        values = "[" + fmt_g(k.min, 9) + ", " + fmt_g(k.max, 9) + "]" + (k.integer ? " whole" : "");
-      }
-      std::string def = k.default_value.empty() ? "(required)" : k.default_value;
-      for (const auto& [when, then] : k.default_when)
-        def += ", " + then + " if " + k.depends_on + "=" + when;
-      t.add({"  " + k.name, def, values, k.help});
+    for (const KeyDef& k : e.keys)
+      t.add({"  " + k.name, default_text(k), values_text(k), k.help});
+    if (e.more_keys) {
+      t.add({"  (more)", "", "",
+             "the keys its library declares: chainbench engines " + e.name +
+                 ":path=FILE lists them"});
     }
-    if (e.open_keys) t.add({"  (others)", "", "", "passed to the engine as they are"});
     t.print(std::cout);
     for (const EngineLimit& l : e.limits)
       std::cout << "  limit: " << l.what << ": " << fmt_g(l.value, 9) << " " << l.unit << "\n";
@@ -88,15 +121,50 @@ int list_engines() {
   return 0;
 }
 
+// One engine as `text` gives it (a plugin loaded and checked): every key with its type, range,
+// default and help, what it can do and what it counts.
+int list_engine(const std::string& text) {
+  const EngineSpec spec = parse_engine_spec(text);
+  const EngineDef& e = engine_def(spec.engine);
+  std::cout << spec.label() << ": " << e.description << "\n";
+  if (!e.caveat.empty()) std::cout << "caveat: " << e.caveat << "\n";
+  std::cout << "canonical: " << spec.str() << "\n\nkeys:\n";
+  std::vector<KeyDef> keys = e.keys;
+  if (e.more_keys) {
+    const std::vector<KeyDef> more = e.more_keys(spec);
+    keys.insert(keys.end(), more.begin(), more.end());
+  }
+  TextTable t({"  key", "type", "values", "default", "here", "meaning"});
+  for (const KeyDef& k : keys)
+    t.add({"  " + k.name, type_text(k), values_text(k), default_text(k), spec.get(k.name), k.help});
+  t.print(std::cout);
+  std::cout << "\ncan do: " << capabilities(spec) << "\n";
+  for (const EngineLimit& l : e.limits)
+    std::cout << "limit: " << l.what << ": " << fmt_g(l.value, 9) << " " << l.unit << "\n";
+  const std::vector<CounterDef> counters = e.spec_counters ? e.spec_counters(spec) : e.counters;
+  std::cout << "\ncounters:" << (counters.empty() ? " none" : "") << "\n";
+  if (!counters.empty()) {
+    TextTable c({"  counter", "over a run", "meaning"});
+    for (const CounterDef& d : counters)
+      c.add({"  " + d.name, aggregate_text(d.aggregate), d.help});
+    c.print(std::cout);
+  }
+  return 0;
+}
+
 }  // namespace
 
 void add_list_commands(CLI::App& app, int* status) {
   app.add_subcommand("list", "Built-in scenes, their parameters and defaults")->callback([status] {
     *status = list_scenes();
   });
-  app.add_subcommand("engines", "Engine specs and their keys")->callback([status] {
-    *status = list_engines();
-  });
+  auto spec = std::make_shared<std::string>();
+  CLI::App* engines = app.add_subcommand("engines", "Engine specs and their keys");
+  engines->add_option("spec", *spec,
+                      "one engine's spec (e.g. plugin:path=FILE): its keys with type, range, "
+                      "default and help, what it can do and what it counts");
+  engines->callback(
+      [status, spec] { *status = spec->empty() ? list_engines() : list_engine(*spec); });
 }
 
 }  // namespace chainbench

@@ -25,7 +25,15 @@ enum class Aggregate : std::uint8_t {
   kMean,  // per step on average: contacts, pair resolutions
   kSum,   // over the run: events
   kMax,   // the largest of any step: depths
+  kLast,  // the last step's: a size the engine has reached
 };
+
+// A counter's running figure after a step that reported `value` (a mean is a sum until the end).
+inline double aggregate_step(Aggregate aggregate, double total, double value) {
+  if (aggregate == Aggregate::kMax) return total > value ? total : value;
+  if (aggregate == Aggregate::kLast) return value;
+  return total + value;
+}
 
 // A figure an engine reports about each step, which the harness aggregates without knowing what
 // it means.

@@ -55,8 +55,27 @@ std::string default_of(const KeyDef& key,
   return key.default_value;
 }
 
-// The value as the canonical string has it, or InputError.
-std::string checked_value(const std::string& where, const KeyDef& key, const std::string& value) {
+// Every key of `spec`'s engine: its own, then those that follow from them.
+std::vector<KeyDef> all_keys(const EngineDef& def, const EngineSpec& spec) {
+  std::vector<KeyDef> keys = def.keys;
+  if (def.more_keys) {
+    std::vector<KeyDef> more = def.more_keys(spec);
+    keys.insert(keys.end(), more.begin(), more.end());
+  }
+  return keys;
+}
+
+std::string key_names(const std::vector<KeyDef>& keys) {
+  std::string s;
+  for (const KeyDef& k : keys)
+    s += (s.empty() ? "" : ", ") + k.name;
+  return s;
+}
+
+}  // namespace
+
+std::string checked_key_value(const std::string& where, const KeyDef& key,
+                              const std::string& value) {
   if (key.file) {
     if (value.empty()) throw InputError(where + ": " + key.name + " is empty");
     std::error_code ec;
@@ -67,6 +86,10 @@ std::string checked_value(const std::string& where, const KeyDef& key, const std
     }
     const std::filesystem::path absolute = std::filesystem::absolute(value, ec);
     return ec ? value : absolute.lexically_normal().string();
+  }
+  if (key.text) {
+    if (value.empty()) throw InputError(where + ": " + key.name + " is empty");
+    return value;
   }
   if (!key.choices.empty()) {
     if (std::find(key.choices.begin(), key.choices.end(), value) == key.choices.end()) {
@@ -88,7 +111,28 @@ std::string checked_value(const std::string& where, const KeyDef& key, const std
   return shortest(v);
 }
 
-}  // namespace
+void add_key_settings(const std::string& where, const std::vector<KeyDef>& keys,
+                      const std::vector<std::pair<std::string, std::string>>& given,
+                      EngineSpec& spec) {
+  for (const auto& g : given) {
+    const std::string& key = g.first;  // named: clang before 16 cannot capture a binding
+    if (std::none_of(keys.begin(), keys.end(), [&](const KeyDef& k) { return k.name == key; })) {
+      throw InputError(where + ": unknown key \"" + key + "\" for " + spec.engine +
+                       " (keys: " + key_names(keys) + ")");
+    }
+  }
+  for (const KeyDef& k : keys) {
+    const auto g =
+        std::find_if(given.begin(), given.end(), [&](const auto& p) { return p.first == k.name; });
+    if (g != given.end()) {
+      spec.settings.emplace_back(k.name, checked_key_value(where, k, g->second));
+    } else if (std::string d = default_of(k, spec.settings); !d.empty()) {
+      spec.settings.emplace_back(k.name, std::move(d));
+    } else {
+      throw InputError(where + ": " + spec.engine + " needs " + k.name + "= (" + k.help + ")");
+    }
+  }
+}
 
 const std::string& EngineSpec::get(std::string_view key) const {
   for (const auto& [k, v] : settings) {
@@ -114,18 +158,18 @@ std::string EngineSpec::str() const {
 
 std::string EngineSpec::label() const {
   const EngineDef& def = engine_def(engine);
+  const std::vector<KeyDef> keys = all_keys(def, *this);
   std::string s = engine;
   bool first = true;
   for (const auto& setting : settings) {
     // Named copies of the pair's halves: clang before 16 cannot capture a structured binding.
     const std::string& key = setting.first;
     const std::string& value = setting.second;
-    const auto declared = std::find_if(def.keys.begin(), def.keys.end(),
-                                       [&](const KeyDef& k) { return k.name == key; });
-    // A passed-on key is always shown; a declared one when it differs from its default here, a
-    // file by its name alone.
-    if (declared != def.keys.end() && value == default_of(*declared, settings)) continue;
-    const bool file = declared != def.keys.end() && declared->file;
+    const auto declared =
+        std::find_if(keys.begin(), keys.end(), [&](const KeyDef& k) { return k.name == key; });
+    // A key is shown when it differs from its default here, a file by its name alone.
+    if (declared != keys.end() && value == default_of(*declared, settings)) continue;
+    const bool file = declared != keys.end() && declared->file;
     s += (first ? ":" : ",") + key + "=" +
          (file ? std::filesystem::path(value).filename().string() : value);
     first = false;
@@ -147,7 +191,8 @@ EngineSpec parse_engine_spec(std::string_view text) {
     throw InputError(where + ": unknown engine \"" + name + "\" (known: " + join(known, ", ") +
                      ")");
   }
-  std::vector<std::pair<std::string, std::string>> given, passed;
+  // Keys the engine declares, and the others, which may follow from them (more_keys).
+  std::vector<std::pair<std::string, std::string>> given, rest;
   if (colon != std::string_view::npos) {
     for (const std::string& kv : split(text.substr(colon + 1), ",")) {
       const std::size_t eq = kv.find('=');
@@ -158,38 +203,16 @@ EngineSpec parse_engine_spec(std::string_view text) {
       auto seen = [&](const auto& list) {
         return std::any_of(list.begin(), list.end(), [&](const auto& g) { return g.first == key; });
       };
-      if (seen(given) || seen(passed))
-        throw InputError(where + ": key \"" + key + "\" given twice");
-      const auto declared = std::find_if(def->keys.begin(), def->keys.end(),
-                                         [&](const KeyDef& k) { return k.name == key; });
-      if (declared != def->keys.end()) {
-        given.emplace_back(key, checked_value(where, *declared, value));
-      } else if (def->open_keys) {
-        if (value.empty()) throw InputError(where + ": key \"" + key + "\" has no value");
-        passed.emplace_back(key, value);
-      } else {
-        std::vector<std::string> keys;
-        for (const KeyDef& k : def->keys)
-          keys.push_back(k.name);
-        throw InputError(where + ": unknown key \"" + key + "\" for " + name +
-                         " (keys: " + join(keys, ", ") + ")");
-      }
+      if (seen(given) || seen(rest)) throw InputError(where + ": key \"" + key + "\" given twice");
+      const bool declared = std::any_of(def->keys.begin(), def->keys.end(),
+                                        [&](const KeyDef& k) { return k.name == key; });
+      (declared ? given : rest).emplace_back(key, value);
     }
   }
   EngineSpec spec{name, {}};
-  for (const KeyDef& k : def->keys) {
-    const auto g =
-        std::find_if(given.begin(), given.end(), [&](const auto& p) { return p.first == k.name; });
-    if (g != given.end()) {
-      spec.settings.emplace_back(k.name, g->second);
-    } else if (std::string d = default_of(k, spec.settings); !d.empty()) {
-      spec.settings.emplace_back(k.name, std::move(d));
-    } else {
-      throw InputError(where + ": " + name + " needs " + k.name + "= (" + k.help + ")");
-    }
-  }
-  std::sort(passed.begin(), passed.end());
-  spec.settings.insert(spec.settings.end(), passed.begin(), passed.end());
+  if (!def->more_keys && !rest.empty()) given.push_back(rest.front());  // refused as unknown
+  add_key_settings(where, def->keys, given, spec);
+  if (def->more_keys) add_key_settings(where, def->more_keys(spec), rest, spec);
   return spec;
 }
 

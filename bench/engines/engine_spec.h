@@ -13,7 +13,7 @@ namespace chainbench {
 
 struct EngineSpec {
   std::string engine;
-  // Every declared key in the engine's order, then the keys an open engine passes on, by name.
+  // Every declared key in the engine's order, then those that follow from them (a plugin's).
   std::vector<std::pair<std::string, std::string>> settings;
 
   const std::string& get(std::string_view key) const;  // std::logic_error for an unknown key
@@ -27,6 +27,18 @@ struct EngineSpec {
 
   friend bool operator==(const EngineSpec&, const EngineSpec&) = default;
 };
+
+struct KeyDef;
+
+// `value` as the canonical string has it, or InputError naming `where`, the key and the reason.
+std::string checked_key_value(const std::string& where, const KeyDef& key,
+                              const std::string& value);
+// Appends to spec.settings every key of `keys` in order: its value in `given` (checked) or its
+// default. InputError naming `where` for a key of `given` that `keys` lacks, a bad value or a
+// missing required key.
+void add_key_settings(const std::string& where, const std::vector<KeyDef>& keys,
+                      const std::vector<std::pair<std::string, std::string>>& given,
+                      EngineSpec& spec);
 
 // Throws InputError naming the spec and the unknown engine, key or bad value.
 EngineSpec parse_engine_spec(std::string_view text);

@@ -1,21 +1,26 @@
-// A user's own resolver, loaded from a shared library through the C ABI of
+// A user's own resolver, loaded from a shared library through the C ABI of//
 // bench/include/chainbench/engine_plugin.h: `plugin:path=FILE[,key=value...]`.
 //
 // What a plugin returns is checked as it comes: a library that cannot be loaded, has no entry
 // point, was built for another ABI or gives an incomplete table, a world it cannot build, a step
 // that fails, a state of the wrong size or with a non-finite number, each stops the run with a
 // message naming the plugin (InputError: exit status 2, or an `error` verdict in stress).
+#include "plugin_engine.h"
 #include "drive_schedule.h"
 #include "input_error.h"
-#include "plugin_engine.h"
+#include "plugin_table.h"
 #include "plugin_text.h"
 #include "registry.h"
+#include "text_table.h"
 
 #include <chainbench/engine_plugin.h>
 
 #include <dlfcn.h>
 
+#include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -26,86 +31,13 @@
 namespace chainbench {
 namespace {
 
-constexpr std::size_t kMaxCounters = 16;
-constexpr std::size_t kNameBound = 64;     // a plugin's name: under 64 bytes, terminated
-constexpr std::size_t kCounterBound = 32;  // a counter's name: under 32 bytes, terminated
-constexpr std::size_t kErrorSize = 512;    // the error buffer chainbench hands a plugin
-
-// A loaded library. Never unloaded: its function pointers must outlive every world made from it.
-struct Plugin {
-  std::string path;
-  std::string name;
-  const cb_engine* api = nullptr;
-  std::vector<CounterDef> counters;
-};
-
-std::string describe(const Plugin& p) {
-  return "plugin " + p.name + " (" + p.path + ")";
-}
+constexpr std::size_t kErrorSize = 512;  // the error buffer chainbench hands a plugin
 
 // What a plugin wrote into an error buffer of kErrorSize bytes, as a message may quote it.
 std::string plugin_error(const char* error) {
   const PluginText t = read_plugin_text(error, kErrorSize);
   if (t.problem.empty()) return t.text.empty() ? "it gave no reason" : t.text;
   return "its message " + t.problem + ", so it is not shown in full: " + t.shown;
-}
-
-// Every field of a plugin's table checked before any is used; `path` names it in messages.
-Plugin check_table(const cb_engine* api, const std::string& path) {
-  const std::string where = "plugin " + path;
-  Plugin p;
-  p.path = path;
-  p.api = api;
-  if (p.api->abi != CHAINBENCH_PLUGIN_ABI) {
-    throw InputError(where + ": built for plugin ABI " + std::to_string(p.api->abi) +
-                     ", this chainbench loads ABI " + std::to_string(CHAINBENCH_PLUGIN_ABI) +
-                     ": rebuild it against this chainbench's engine_plugin.h");
-  }
-  if (p.api->size != sizeof(cb_engine)) {
-    throw InputError(where + ": its cb_engine is " + std::to_string(p.api->size) +
-                     " bytes, this chainbench's is " + std::to_string(sizeof(cb_engine)));
-  }
-  if (p.api->name) {
-    const PluginText name = read_plugin_text(p.api->name, kNameBound);
-    if (!name.problem.empty()) {
-      throw InputError(where + ": its name " + name.problem +
-                       " (a name is printable ASCII, under " + std::to_string(kNameBound) +
-                       " bytes): " + name.shown);
-    }
-    p.name = name.text;
-  }
-  if (p.name.empty()) p.name = "(unnamed)";
-  if (!p.api->create || !p.api->set_velocity || !p.api->step || !p.api->read_state ||
-      !p.api->destroy || (p.api->counter_count > 0 && !p.api->read_counters)) {
-    throw InputError(describe(p) + ": its cb_engine leaves a required function null");
-  }
-  if (p.api->counter_count > kMaxCounters) {
-    throw InputError(describe(p) + ": reports " + std::to_string(p.api->counter_count) +
-                     " counters, more than " + std::to_string(kMaxCounters));
-  }
-  if (const std::uint32_t unknown = p.api->capabilities & ~known_capabilities()) {
-    throw InputError(describe(p) + ": sets capability bits " + std::to_string(unknown) +
-                     " that this chainbench does not know (it knows CB_CAN_*, " +
-                     std::to_string(known_capabilities()) + " together)");
-  }
-  std::set<std::string> seen;
-  for (std::uint32_t k = 0; k < p.api->counter_count; ++k) {
-    const char* raw = p.api->counter_names ? p.api->counter_names[k] : nullptr;
-    const PluginText name = read_plugin_text(raw, kCounterBound);
-    const std::string problem =
-        name.problem.empty() ? counter_name_problem(name.text) : name.problem;
-    if (!problem.empty()) {
-      throw InputError(describe(p) + ": counter " + std::to_string(k) +
-                       " has no valid name (letters a-z, digits and _, under 32): its name " +
-                       problem + ": " + name.shown);
-    }
-    if (!seen.insert(name.text).second) {
-      throw InputError(describe(p) + ": counter " + std::to_string(k) + " is named " + name.text +
-                       ", as an earlier counter is: each counter needs a name of its own");
-    }
-    p.counters.push_back({name.text, Aggregate::kMean, "reported by the plugin", name.text});
-  }
-  return p;
 }
 
 Plugin open_plugin(const std::string& path) {
@@ -148,6 +80,8 @@ cb_body to_plugin(const Scene& scene, const SceneBody& b) {
   out.gravity_scale = b.gravity_scale;
   out.friction = scene.friction_of(b);
   out.restitution = scene.restitution_of(b);
+  out.from_step = std::clamp(b.from_step, 0, INT32_MAX);
+  out.to_step = std::clamp(b.to_step, 0, INT32_MAX);
   return out;
 }
 
@@ -158,14 +92,29 @@ class PluginEngine final : public Engine {
         plugin_(*owner_),
         drives_(scene),
         names_(scene.bodies.size()),
+        in_world_(scene.bodies.size()),
         positions_(2 * scene.bodies.size()),
         velocities_(2 * scene.bodies.size()),
         counters_(plugin_.counters.size()) {
     std::vector<cb_body> bodies;
     bodies.reserve(scene.bodies.size());
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-      bodies.push_back(to_plugin(scene, scene.bodies[i]));
       names_[i] = scene.bodies[i].name;
+      in_world_[i] = scene.bodies[i].from_step == 0;
+      bodies.push_back(to_plugin(scene, scene.bodies[i]));
+      bodies.back().name = names_[i].c_str();
+    }
+    std::vector<cb_driver> drivers;
+    for (const Driver& d : scene.drivers) {
+      cb_driver out{};
+      out.body = static_cast<std::uint32_t>(d.body);
+      out.axes =
+          (d.hold_x ? std::uint32_t{CB_AXIS_X} : 0u) | (d.hold_y ? std::uint32_t{CB_AXIS_Y} : 0u);
+      out.velocity[0] = d.hold_x ? d.velocity.x : 0.0;
+      out.velocity[1] = d.hold_y ? d.velocity.y : 0.0;
+      out.from_step = std::clamp(d.from_step, 0, INT32_MAX);
+      out.to_step = std::clamp(d.to_step, 0, INT32_MAX);
+      drivers.push_back(out);
     }
     std::vector<cb_setting> settings;
     for (const auto& [key, value] : spec.settings) {
@@ -180,6 +129,9 @@ class PluginEngine final : public Engine {
     desc.bodies = bodies.data();
     desc.setting_count = static_cast<std::uint32_t>(settings.size());
     desc.settings = settings.data();
+    desc.steps = scene.steps;
+    desc.driver_count = static_cast<std::uint32_t>(drivers.size());
+    desc.drivers = drivers.data();
     char error[kErrorSize] = "";
     world_ = plugin_.api->create(&desc, error, sizeof error);
     if (!world_) {
@@ -229,6 +181,7 @@ class PluginEngine final : public Engine {
                        " bodies, the scene " + std::to_string(n));
     }
     for (std::size_t i = 0; i < n; ++i) {
+      if (!in_world_[i]) continue;  // its entry is the plugin's to leave
       const double values[5] = {positions_[2 * i], positions_[2 * i + 1], velocities_[2 * i],
                                 velocities_[2 * i + 1], out.angle[i]};
       for (const double v : values) {
@@ -256,18 +209,29 @@ class PluginEngine final : public Engine {
     return counters_;
   }
   bool degraded() const override { return degraded_; }
-  // Never called: plugins lack Capabilities::lifetimes, so such scenes are refused before.
-  void add_body(std::size_t) override { throw std::logic_error("plugin: no add_body in ABI 1"); }
-  void remove_body(std::size_t) override {
-    throw std::logic_error("plugin: no remove_body in ABI 1");
-  }
+  // Called only for a plugin with CB_CAN_LIFETIMES, whose table then has both (check_table).
+  void add_body(std::size_t index) override { change(index, true); }
+  void remove_body(std::size_t index) override { change(index, false); }
 
  private:
+  void change(std::size_t index, bool add) {
+    const auto body = static_cast<std::uint32_t>(index);
+    const int rc =
+        add ? plugin_.api->add_body(world_, body) : plugin_.api->remove_body(world_, body);
+    if (rc != 0) {
+      throw InputError(describe(plugin_) + ": refused to " + (add ? "add" : "remove") + " body " +
+                       names_[index] + " (" + (add ? "add_body" : "remove_body") + " returned " +
+                       std::to_string(rc) + ")");
+    }
+    in_world_[index] = add ? 1 : 0;
+  }
+
   std::shared_ptr<const Plugin> owner_;
   const Plugin& plugin_;
   cb_world* world_ = nullptr;
   DriveSchedule drives_;
   std::vector<std::string> names_;
+  std::vector<char> in_world_;  // per body: in the plugin's world now
   mutable std::vector<double> positions_, velocities_, counters_;
   bool degraded_ = false;
   int steps_ = 0;  // steps taken, for messages
@@ -278,8 +242,15 @@ class PluginEngine final : public Engine {
 std::unique_ptr<Engine> make_plugin_engine(const cb_engine* table, const std::string& label,
                                            const EngineSpec& spec, const Scene& scene) {
   if (!table) throw InputError("plugin " + label + ": its table is null");
-  return std::make_unique<PluginEngine>(std::make_shared<const Plugin>(check_table(table, label)),
-                                        spec, scene);
+  auto plugin = std::make_shared<const Plugin>(check_table(table, label));
+  // As the spec parser would: every setting a declared key's, checked, defaults filled in.
+  EngineSpec checked{spec.engine, {}};
+  std::vector<std::pair<std::string, std::string>> given;
+  for (const auto& setting : spec.settings)
+    (setting.first == "path" ? checked.settings : given).push_back(setting);
+  add_key_settings("engine spec \"" + cut_for_message(spec.str()) + "\"", plugin->keys, given,
+                   checked);
+  return std::make_unique<PluginEngine>(std::move(plugin), checked, scene);
 }
 
 EngineDef register_plugin() {
@@ -288,7 +259,8 @@ EngineDef register_plugin() {
   e.description =
       "your own resolver, from a shared library built against chainbench/engine_plugin.h";
   e.keys = {file_key("path", "the plugin's shared library (.so)")};
-  e.open_keys = true;
+  e.more_keys = [](const EngineSpec& spec) { return load_plugin(spec.get("path"))->keys; };
+  e.spec_counters = [](const EngineSpec& spec) { return load_plugin(spec.get("path"))->counters; };
   e.isolated = true;
   e.capabilities = [](const EngineSpec& spec) {
     const std::uint32_t can = load_plugin(spec.get("path"))->api->capabilities;
@@ -298,12 +270,13 @@ EngineDef register_plugin() {
     c.restitution = (can & CB_CAN_RESTITUTION) != 0;
     c.kinematic = (can & CB_CAN_KINEMATIC) != 0;
     c.axis_drives = (can & CB_CAN_AXIS_DRIVES) != 0;
+    c.lifetimes = (can & CB_CAN_LIFETIMES) != 0;  // with add_body and remove_body (check_table)
     return c;
   };
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
     return std::make_unique<PluginEngine>(load_plugin(spec.get("path")), spec, scene);
   };
-  // No add or remove in ABI 1: missing_capability refuses scenes whose bodies come and go.
+  // Without CB_CAN_LIFETIMES, missing_capability refuses scenes whose bodies come and go.
   return e;
 }
 

@@ -50,13 +50,29 @@ PluginText read_plugin_text(const char* s, std::size_t bound) {
   return out;
 }
 
-std::string counter_name_problem(const std::string& name) {
+namespace {
+
+// Empty when `name` is 1-31 characters of a-z, 0-9 and _.
+std::string identifier_problem(const std::string& name) {
   if (name.empty()) return "is empty";
   if (name.size() >= 32) return "is " + std::to_string(name.size()) + " characters, not under 32";
   for (const char c : name) {
     if (!((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'))
       return "holds '" + std::string(1, c) + "' (only a-z, 0-9 and _)";
   }
+  return {};
+}
+
+}  // namespace
+
+std::string key_name_problem(const std::string& name) {
+  if (std::string problem = identifier_problem(name); !problem.empty()) return problem;
+  if (name == "path") return "is path, the key that names the library";
+  return {};
+}
+
+std::string counter_name_problem(const std::string& name) {
+  if (std::string problem = identifier_problem(name); !problem.empty()) return problem;
   // The stress JSON keeps these keys for the chain solver's counters of those names.
   for (const char* reserved : {"budget_hits", "crush_events"}) {
     if (name == reserved) return "is reserved for the chain solver's own counter";
@@ -66,7 +82,7 @@ std::string counter_name_problem(const std::string& name) {
 
 std::uint32_t known_capabilities() {
   return CB_CAN_ROTATE | CB_CAN_FRICTION | CB_CAN_RESTITUTION | CB_CAN_KINEMATIC |
-         CB_CAN_AXIS_DRIVES;
+         CB_CAN_AXIS_DRIVES | CB_CAN_LIFETIMES;
 }
 
 }  // namespace chainbench

@@ -24,6 +24,10 @@ PluginText read_plugin_text(const char* s, std::size_t bound);
 // stress JSON keeps for the chain solver's own counters (budget_hits, crush_events).
 std::string counter_name_problem(const std::string& name);
 
+// Empty when `name` can be a plugin key's name: [a-z0-9_], 1-31 characters, and not "path"
+// (the key that names the library).
+std::string key_name_problem(const std::string& name);
+
 // The capability bits this chainbench knows (CB_CAN_*).
 std::uint32_t known_capabilities();
 

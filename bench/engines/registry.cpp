@@ -56,6 +56,15 @@ KeyDef file_key(std::string name, std::string help) {
   return k;
 }
 
+KeyDef text_key(std::string name, std::string default_value, std::string help) {
+  KeyDef k;
+  k.name = std::move(name);
+  k.default_value = std::move(default_value);
+  k.text = true;
+  k.help = std::move(help);
+  return k;
+}
+
 const std::vector<EngineDef>& engine_registry() {
   static const std::vector<EngineDef> registry = {
 #define CHAINBENCH_ENGINE(name) register_##name(),
@@ -97,8 +106,7 @@ std::string missing_capability(const EngineSpec& spec, const Scene& scene) {
       return who + " has no kinematic bodies, and " + at + " is one";
     }
     if (!can.lifetimes && b.comes_or_goes()) {
-      return who + " cannot add or remove bodies during a run (plugin ABI " +
-             "1 has no add or remove), and " + at + " " +
+      return who + " cannot add or remove bodies during a run, and " + at + " " +
              (b.from_step > 0 ? "enters at step " + std::to_string(b.from_step)
                               : "leaves at step " + std::to_string(b.to_step));
     }

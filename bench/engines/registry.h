@@ -22,11 +22,12 @@ namespace chainbench {
 struct KeyDef {
   std::string name;
   std::string default_value;
-  std::vector<std::string> choices;  // empty: a number in [min, max], or a file
+  std::vector<std::string> choices;  // empty: a number in [min, max], a file or a text
   double min = 0.0;
   double max = 0.0;
   bool integer = true;
   bool file = false;  // a path to a file, kept as an absolute path; no default: required
+  bool text = false;  // any non-empty text, kept as given
   std::string help;
   // A default that follows another key: while `depends_on` has value `first`, it is `second`.
   std::string depends_on;
@@ -40,6 +41,7 @@ KeyDef whole_key(std::string name, long long default_value, long long min, long 
                  std::string help);
 KeyDef number_key(std::string name, double default_value, double min, double max, std::string help);
 KeyDef file_key(std::string name, std::string help);
+KeyDef text_key(std::string name, std::string default_value, std::string help);
 
 // What an engine can simulate; a scene that needs more is refused by name, not run wrong.
 struct Capabilities {
@@ -67,9 +69,14 @@ struct EngineDef {
   std::string name;
   std::string description;
   std::vector<KeyDef> keys;
-  bool open_keys = false;  // keys it does not declare are passed to the engine (plugins)
+  // Keys that follow from the declared ones (a plugin's, which its library declares): checked,
+  // defaulted and listed as `keys` are, after them. Called with the declared keys parsed.
+  std::function<std::vector<KeyDef>(const EngineSpec&)> more_keys;
   std::function<Capabilities(const EngineSpec&)> capabilities;
-  std::vector<CounterDef> counters;  // what its engines count (a plugin's, once loaded)
+  std::vector<CounterDef> counters;  // what its engines count
+  // What an engine of `spec` counts when it follows from the spec (a plugin's, from its library);
+  // when set, it stands for `counters`.
+  std::function<std::vector<CounterDef>(const EngineSpec&)> spec_counters;
   // How its times must be read, said beside every figure that quotes them (run JSON "caveat",
   // `chainbench engines`, the benchmark's context, the report's and README's ratios); or empty.
   std::string caveat;

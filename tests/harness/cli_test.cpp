@@ -489,12 +489,61 @@ TEST(Cli, APluginRunsInRunSweepAndStress) {
   EXPECT_NE(stress.out.find("plugin:path=librelaxation.so"), std::string::npos) << stress.out;
 }
 
+// A key the plugin does not declare, or a value out of its range, stops the command as the spec
+// is read: exit 2 naming the plugin, the key and why, before any engine runs (no scene header,
+// no row of the chain engine listed before it).
+TEST(Cli, ABadPluginKeyIsRefusedBeforeAnyEngineRuns) {
+  const std::string plugin =
+      std::string("plugin:path=") + CHAINBENCH_TEST_PLUGINS + "/libtest_plugin_none.so";
+  for (const auto& [keys, message] :
+       {std::pair<std::string, std::string>{"bogus=1", "unknown key \"bogus\" for plugin"},
+        {"gain=11", "gain: 11 is out of range [0, 10]"}}) {
+    SCOPED_TRACE(keys);
+    const Result r = chainbench("run --scene stack --set n=2 --engines chain," + plugin + "," +
+                                keys + " --reference none");
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find(message), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("libtest_plugin_none.so"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("scene stack"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("ms/step"), std::string::npos) << r.out;
+  }
+}
+
+// `chainbench engines SPEC` lists one engine: each key with its type, range, default and help,
+// what it can do and what it counts (a plugin's as its library declares them).
+TEST(Cli, EnginesSpecListsOneEnginesKeysCapabilitiesAndCounters) {
+  const std::string dir = CHAINBENCH_TEST_PLUGINS;
+  const Result plugin = chainbench("engines plugin:path=" + dir + "/libtest_plugin_none.so");
+  ASSERT_EQ(plugin.status, 0) << plugin.out;
+  for (const char* line :
+       {"  gain       number       [0, 10]           1", "a gain, from 0 to 10",
+        "  substeps  integer  [1, 8] whole", "  label        text          text        none",
+        "can do: kinematic bodies, per-axis drives", "  steps_sum        sum over the run",
+        "  steps_last              last step     steps taken, last"})
+    EXPECT_NE(plugin.out.find(line), std::string::npos) << line << "\n" << plugin.out;
+  // The spec's own values are shown beside the defaults.
+  const Result given = chainbench("engines plugin:path=" + dir + "/libtest_plugin_none.so,gain=3");
+  EXPECT_NE(given.out.find("canonical: plugin:path="), std::string::npos) << given.out;
+  EXPECT_NE(given.out.find(",gain=3,substeps=1,label=none"), std::string::npos) << given.out;
+  const Result box2d = chainbench("engines box2d");
+  EXPECT_EQ(box2d.status, 0) << box2d.out;
+  EXPECT_NE(box2d.out.find("  vel_iters  integer  [1, 1000] whole"), std::string::npos)
+      << box2d.out;
+  EXPECT_NE(box2d.out.find("  contacts  mean per step"), std::string::npos) << box2d.out;
+  // A plugin whose table is bad, or an engine that does not exist, is refused as in a run.
+  const Result bad = chainbench("engines plugin:path=" + dir + "/libtest_plugin_key_type.so");
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("key substeps: its type is 7"), std::string::npos) << bad.out;
+  EXPECT_EQ(chainbench("engines nosuch").status, 2);
+}
+
 TEST(Cli, PluginFaultsExitTwoWithTheirReason) {
   const std::string dir = CHAINBENCH_TEST_PLUGINS;
   for (const auto& [fault, message] :
        {std::pair<std::string, std::string>{"missing", "no such file"},
         {"no_entry", "exports no chainbench_engine_plugin()"},
-        {"abi", "built for plugin ABI 2"},
+        {"abi", "built for plugin ABI 3, this chainbench loads ABI 2"},
+        {"abi1", "built for plugin ABI 1, this chainbench loads ABI 2"},
         {"create", "this plugin builds no worlds"},
         {"nan", "non-finite state for body"}}) {
     SCOPED_TRACE(fault);

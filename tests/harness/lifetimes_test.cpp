@@ -1,6 +1,6 @@
 // Bodies that come and go (SceneBody::from_step, to_step): a scene file whose bodies enter and
 // leave runs in every engine that adds and removes bodies with the right answer, a window outside
-// a body's life is refused, plugins (ABI 1) are refused by name, spawn_rain meets its stated
+// a body's life is refused, plugins without CB_CAN_LIFETIMES are refused by name, spawn_rain meets its stated
 // answer, and the chain solver's runs with spawns are the same bits twice and on two threads.
 #include "input_error.h"
 #include "registry.h"
@@ -56,7 +56,7 @@ TEST(Lifetimes, SceneFileBodiesComeAndGoInEveryEngine) {
   int engines = 0;
   for (const EngineDef& def : engine_registry()) {
     const EngineSpec spec = parse_engine_spec(def.name == "plugin" ? "chain" : def.name);
-    if (def.name == "plugin") continue;  // no add or remove in ABI 1: refused below
+    if (def.name == "plugin") continue;  // needs its library: plugin_test.cpp, and below
     SCOPED_TRACE(def.name);
     ++engines;
     const EngineRun run = run_engine(scene, spec, RunOptions{});
@@ -103,6 +103,7 @@ TEST(Lifetimes, ABodyMustTakePartInAStep) {
   }
 }
 
+// The relaxation example has no add_body or remove_body (no CB_CAN_LIFETIMES).
 TEST(Lifetimes, PluginsAreRefusedByName) {
   const Scene scene = parse_scene(kComings, "comings.json");
   const EngineSpec spec = parse_engine_spec("plugin:path=" CHAINBENCH_RELAXATION_PLUGIN);

@@ -53,19 +53,119 @@ TEST(Plugin, BallisticPluginFollowsTheAnalyticFlight) {
   EXPECT_NEAR(run.final_positions[1].x, 10.0 + n * s.dt * 3.0, 1e-9);       // x held by its driver
   EXPECT_NEAR(run.final_positions[1].y, fallen(10, 0, -5, s.dt, n), 1e-9);  // gravity scale 0.5
   EXPECT_NEAR(run.final_positions[2].y, 0.0 + n * s.dt * 1.0, 1e-9);
-  // Its one counter is the steps it has taken; the run reports its mean over steps, (n + 1) / 2.
-  ASSERT_EQ(run.counters.size(), 1u);
+  // Its four counters are each the steps it has taken, aggregated four ways as it declares: the
+  // mean over steps (n + 1) / 2, the largest n, the sum n (n + 1) / 2 and the last n.
+  ASSERT_EQ(run.counters.size(), 4u);
   EXPECT_EQ(run.counter_defs()[0].name, "steps_so_far");
+  EXPECT_EQ(run.counter_defs()[0].help, "steps taken, mean");
+  EXPECT_EQ(run.counter_defs()[1].aggregate, Aggregate::kMax);
+  EXPECT_EQ(run.counter_defs()[2].aggregate, Aggregate::kSum);
+  EXPECT_EQ(run.counter_defs()[3].aggregate, Aggregate::kLast);
   EXPECT_DOUBLE_EQ(run.counters[0], (n + 1) / 2.0);
+  EXPECT_DOUBLE_EQ(run.counters[1], n);
+  EXPECT_DOUBLE_EQ(run.counters[2], n * (n + 1) / 2.0);
+  EXPECT_DOUBLE_EQ(run.counters[3], n);
 }
 
-TEST(Plugin, SettingsReachThePlugin) {
+// Every declared key reaches the plugin, in its order, given or defaulted, in canonical form.
+TEST(Plugin, SettingsReachThePluginWithDefaultsFilledIn) {
   try {
-    run_engine(flight(), parse_engine_spec(plugin_spec("none") + ",colour=red"), RunOptions{});
-    FAIL() << "the plugin accepted a setting it does not know";
+    run_engine(flight(), parse_engine_spec(plugin_spec("none") + ",label=echo,gain=2.50"),
+               RunOptions{});
+    FAIL() << "label=echo did not reach the plugin";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("unknown setting \"colour\""), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("settings: gain=2.5 substeps=1 label=echo"),
+              std::string::npos)
         << e.what();
+  }
+  const EngineSpec spec = parse_engine_spec(plugin_spec("none") + ",substeps=3");
+  EXPECT_EQ(spec.get("gain"), "1");
+  EXPECT_EQ(spec.get("substeps"), "3");
+  EXPECT_EQ(spec.get("label"), "none");
+  EXPECT_EQ(spec.label(), "plugin:path=libtest_plugin_none.so,substeps=3");
+  EXPECT_EQ(parse_engine_spec(spec.str()), spec);
+}
+
+// The world's description carries the scene's step count, every body's name and the drivers
+// (body, axes held, velocity, steps), which the describe label makes the plugin echo.
+TEST(Plugin, TheDescriptionCarriesNamesDriversAndSteps) {
+  Scene s = flight();
+  s.drivers[0].from_step = 2;
+  s.drivers[0].to_step = 20;
+  try {
+    run_engine(s, parse_engine_spec(plugin_spec("none") + ",label=describe"), RunOptions{});
+    FAIL() << "label=describe did not reach the plugin";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("steps 30, bodies ball cart lift, driver body 1 axes 1 "
+                                         "velocity 3 0 steps 2 to 20"),
+              std::string::npos)
+        << e.what();
+  }
+  // A driver without an end holds to INT32_MAX.
+  try {
+    run_engine(flight(), parse_engine_spec(plugin_spec("none") + ",label=describe"), RunOptions{});
+    ADD_FAILURE() << "label=describe did not reach the plugin";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("steps 0 to 2147483647"), std::string::npos) << e.what();
+  }
+}
+
+// Bodies that come and go reach a plugin with CB_CAN_LIFETIMES through add_body and remove_body:
+// a ball entering at step 10 falls for the 20 steps it takes part in, from where the scene puts
+// it; a cart leaving at step 12 stays where 12 steps took it.
+TEST(Plugin, BodiesComeAndGoThroughAddAndRemove) {
+  Scene s = flight();
+  s.bodies[0].from_step = 10;
+  s.bodies[1].to_step = 12;
+  s.drivers.clear();
+  Expectation left;  // the cart's last state, 12, where 12 steps of its fall took it
+  left.kind = Expectation::Kind::kCenter;
+  left.body = 1;
+  left.center = {10.0, fallen(10, 0, -5, s.dt, 12)};
+  left.tolerance = 1e-9;
+  left.from_step = 12;
+  left.to_step = 12;
+  s.expect.push_back(left);
+  const EngineRun run = run_engine(s, parse_engine_spec(plugin_spec("none")), RunOptions{});
+  ASSERT_FALSE(run.failure);
+  ASSERT_EQ(run.final_positions.size(), 3u);
+  EXPECT_NEAR(run.final_positions[0].x, 0.0 + 20 * s.dt * 1.0, 1e-9);
+  EXPECT_NEAR(run.final_positions[0].y, fallen(10, 2, -10, s.dt, 20), 1e-9);
+  ASSERT_TRUE(run.expect.has_value());
+  EXPECT_TRUE(run.expect->pass) << run.expect->max_error;
+  // Removed, it fell no further: its final entry is not the 30-step fall.
+  EXPECT_GT(std::abs(run.final_positions[1].y - fallen(10, 0, -5, s.dt, 30)), 1.0);
+  // A plugin that refuses to add a body stops the run naming it.
+  try {
+    run_engine(s, parse_engine_spec(plugin_spec("add_refused")), RunOptions{});
+    FAIL() << "a refused add_body went unnoticed";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("refused to add body ball (add_body returned 1)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A key the plugin does not declare, or a value outside what it declares, is refused when the
+// spec is read, naming the spec (so the plugin's library), the key and why.
+TEST(Plugin, AnUndeclaredKeyOrABadValueIsRefusedWhenTheSpecIsRead) {
+  for (const auto& [keys, message] :
+       {std::pair<std::string, std::string>{"colour=red",
+                                            "unknown key \"colour\" for plugin (keys: gain, "
+                                            "substeps, label)"},
+        {"gain=11", "gain: 11 is out of range [0, 10]"},
+        {"substeps=2.5", "substeps"},
+        {"substeps=9", "substeps"},
+        {"label=", "label is empty"}}) {
+    SCOPED_TRACE(keys);
+    try {
+      parse_engine_spec(plugin_spec("none") + "," + keys);
+      FAIL() << "accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(message), std::string::npos) << what;
+      EXPECT_NE(what.find("libtest_plugin_none.so"), std::string::npos) << what;
+    }
   }
 }
 
@@ -105,7 +205,18 @@ INSTANTIATE_TEST_SUITE_P(
     EveryFault, PluginFault,
     ::testing::Values(
         Fault{"no_entry", "exports no chainbench_engine_plugin()"},
-        Fault{"abi", "built for plugin ABI 2, this chainbench loads ABI 1"},
+        Fault{"abi", "built for plugin ABI 3, this chainbench loads ABI 2"},
+        Fault{"abi1", "built for plugin ABI 1, this chainbench loads ABI 2: rebuild it"},
+        Fault{"key_name",
+              "key 0 has no valid name (letters a-z, digits and _, under 32): its "
+              "name holds 'G'"},
+        Fault{"key_default", "key gain: its default: gain: 20 is out of range [0, 10]"},
+        Fault{"key_range", "key substeps: its range [8, 1] is not two whole numbers"},
+        Fault{"key_type", "key substeps: its type is 7"},
+        Fault{"counter_aggregate", "counter steps_so_far: its aggregate is 9 (CB_AGG_MEAN 0"},
+        Fault{"lifetimes_null", "sets CB_CAN_LIFETIMES and leaves remove_body null"},
+        Fault{"counter_description",
+              "counter steps_so_far: its description holds the non-printable byte 0x0a"},
         Fault{"size", "its cb_engine is"},
         Fault{"null_function", "leaves a required function null"},
         Fault{"bad_counter", "counter 0 has no valid name"},

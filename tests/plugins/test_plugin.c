@@ -37,6 +37,16 @@
 #define FAULT_STEP_RC 23           /* step 3 returns 2 */
 #define FAULT_CAPABILITY 24        /* an unknown capability bit */
 #define FAULT_ERROR_ESCAPE 25      /* refuses every world with terminal escapes in the message */
+#define FAULT_ABI1 26              /* built for ABI 1, which had no declared keys */
+/* Declared keys that are not what the contract allows. */
+#define FAULT_KEY_NAME 27            /* a key named "Gain" */
+#define FAULT_KEY_DEFAULT 28         /* gain's default, 20, outside its range [0, 10] */
+#define FAULT_KEY_RANGE 29           /* substeps' range [8, 1] */
+#define FAULT_KEY_TYPE 30            /* a key of type 7 */
+#define FAULT_COUNTER_AGGREGATE 31   /* a counter aggregated by 9 */
+#define FAULT_COUNTER_DESCRIPTION 32 /* a counter whose description holds a newline */
+#define FAULT_LIFETIMES_NULL 33      /* CB_CAN_LIFETIMES without remove_body */
+#define FAULT_ADD_REFUSED 34         /* add_body refuses every body */
 
 #ifndef TEST_PLUGIN_FAULT
 #define TEST_PLUGIN_FAULT FAULT_NONE
@@ -48,6 +58,7 @@ struct cb_world {
   double dt;
   int steps;
   cb_body* bodies;
+  char* alive; /* per body: in the world now */
 };
 
 static void write_error(char* error, size_t size, const char* text) {
@@ -55,7 +66,6 @@ static void write_error(char* error, size_t size, const char* text) {
 }
 
 static cb_world* create(const cb_world_desc* desc, char* error, size_t error_size) {
-  uint32_t i;
   cb_world* w;
   if (TEST_PLUGIN_FAULT == FAULT_CREATE) {
     write_error(error, error_size, "this plugin builds no worlds");
@@ -69,9 +79,30 @@ static cb_world* create(const cb_world_desc* desc, char* error, size_t error_siz
     write_error(error, error_size, "bad\033[2J\nchainbench: all engines ok");
     return NULL;
   }
-  for (i = 0; i < desc->setting_count; ++i) {
-    char message[128];
-    snprintf(message, sizeof message, "unknown setting \"%s\"", desc->settings[i].key);
+  /* label=echo: refuses the world with the settings it was given, in their order. */
+  if (desc->setting_count == 3 && strcmp(desc->settings[2].key, "label") == 0 &&
+      strcmp(desc->settings[2].value, "echo") == 0) {
+    char message[256];
+    snprintf(message, sizeof message, "settings: %s=%s %s=%s %s=%s", desc->settings[0].key,
+             desc->settings[0].value, desc->settings[1].key, desc->settings[1].value,
+             desc->settings[2].key, desc->settings[2].value);
+    write_error(error, error_size, message);
+    return NULL;
+  }
+  /* label=describe: refuses the world with what its description says of the scene. */
+  if (desc->setting_count == 3 && strcmp(desc->settings[2].value, "describe") == 0) {
+    char message[512];
+    size_t used = (size_t)snprintf(message, sizeof message, "steps %d, bodies", (int)desc->steps);
+    uint32_t i;
+    for (i = 0; i < desc->body_count && used < sizeof message; ++i)
+      used += (size_t)snprintf(message + used, sizeof message - used, " %s", desc->bodies[i].name);
+    for (i = 0; i < desc->driver_count && used < sizeof message; ++i) {
+      const cb_driver* d = &desc->drivers[i];
+      used += (size_t)snprintf(message + used, sizeof message - used,
+                               ", driver body %u axes %u velocity %g %g steps %d to %d",
+                               (unsigned)d->body, (unsigned)d->axes, d->velocity[0], d->velocity[1],
+                               (int)d->from_step, (int)d->to_step);
+    }
     write_error(error, error_size, message);
     return NULL;
   }
@@ -87,6 +118,14 @@ static cb_world* create(const cb_world_desc* desc, char* error, size_t error_siz
     return NULL;
   }
   memcpy(w->bodies, desc->bodies, desc->body_count * sizeof(cb_body));
+  w->alive = (char*)calloc(desc->body_count ? desc->body_count : 1, 1);
+  if (!w->alive) {
+    free(w->bodies);
+    free(w);
+    return NULL;
+  }
+  for (uint32_t i = 0; i < desc->body_count; ++i)
+    w->alive[i] = desc->bodies[i].from_step == 0;
   return w;
 }
 
@@ -122,7 +161,7 @@ static int step(cb_world* w, char* error, size_t error_size) {
   }
   for (i = 0; i < w->count; ++i) {
     cb_body* b = &w->bodies[i];
-    if (b->kind == CB_STATIC) continue;
+    if (b->kind == CB_STATIC || !w->alive[i]) continue;
     if (b->kind == CB_DYNAMIC) {
       b->velocity[0] += w->dt * b->gravity_scale * w->gravity[0];
       b->velocity[1] += w->dt * b->gravity_scale * w->gravity[1];
@@ -138,6 +177,7 @@ static uint32_t read_state(const cb_world* w, double* positions, double* velocit
                            uint32_t capacity) {
   uint32_t i;
   for (i = 0; i < w->count && i < capacity; ++i) {
+    if (!w->alive[i]) continue;
     if (positions) {
       positions[2 * i] = w->bodies[i].center[0];
       positions[2 * i + 1] = w->bodies[i].center[1];
@@ -151,14 +191,22 @@ static uint32_t read_state(const cb_world* w, double* positions, double* velocit
   return TEST_PLUGIN_FAULT == FAULT_COUNT ? w->count + 1 : w->count;
 }
 
-static void read_counters(const cb_world* w, double* values) {
-  values[0] = (double)w->steps;
-  if (TEST_PLUGIN_FAULT == FAULT_COUNTER_NAN && w->steps >= 2) values[0] = NAN;
-  if (TEST_PLUGIN_FAULT == FAULT_COUNTER_DUPLICATE) values[1] = 1.0;
+/* A body enters as create described it: it has not moved while out of the world. */
+static int add_body(cb_world* w, uint32_t body) {
+  if (TEST_PLUGIN_FAULT == FAULT_ADD_REFUSED || body >= w->count || w->alive[body]) return 1;
+  w->alive[body] = 1;
+  return 0;
+}
+
+static int remove_body(cb_world* w, uint32_t body) {
+  if (body >= w->count || !w->alive[body]) return 1;
+  w->alive[body] = 0;
+  return 0;
 }
 
 static void destroy(cb_world* w) {
   if (!w) return;
+  free(w->alive);
   free(w->bodies);
   free(w);
 }
@@ -176,17 +224,37 @@ static void destroy(cb_world* w) {
 static const char unterminated[4096] = {LONG1K, LONG1K, LONG1K, LONG1K};
 #endif
 
+/* Without a fault: the steps taken, once per aggregate, so that each aggregate has a known
+ * answer over n steps: mean (n + 1) / 2, max n, sum n (n + 1) / 2, last n. */
 #if TEST_PLUGIN_FAULT == FAULT_BAD_COUNTER
-static const char* const counter_names[] = {"steps so far"};
+static const cb_counter counters[] = {{"steps so far", "steps taken", CB_AGG_MEAN}};
 #elif TEST_PLUGIN_FAULT == FAULT_COUNTER_UNTERMINATED
-static const char* const counter_names[] = {unterminated};
+static const cb_counter counters[] = {{unterminated, "steps taken", CB_AGG_MEAN}};
 #elif TEST_PLUGIN_FAULT == FAULT_COUNTER_DUPLICATE
-static const char* const counter_names[] = {"steps_so_far", "steps_so_far"};
+static const cb_counter counters[] = {{"steps_so_far", "steps taken", CB_AGG_MEAN},
+                                      {"steps_so_far", "steps taken", CB_AGG_MAX}};
 #elif TEST_PLUGIN_FAULT == FAULT_COUNTER_RESERVED
-static const char* const counter_names[] = {"budget_hits"};
+static const cb_counter counters[] = {{"budget_hits", "steps taken", CB_AGG_MEAN}};
+#elif TEST_PLUGIN_FAULT == FAULT_COUNTER_AGGREGATE
+static const cb_counter counters[] = {{"steps_so_far", "steps taken", 9}};
+#elif TEST_PLUGIN_FAULT == FAULT_COUNTER_DESCRIPTION
+static const cb_counter counters[] = {{"steps_so_far", "steps\ntaken", CB_AGG_MEAN}};
 #else
-static const char* const counter_names[] = {"steps_so_far"};
+static const cb_counter counters[] = {{"steps_so_far", "steps taken, mean", CB_AGG_MEAN},
+                                      {"steps_max", "steps taken, largest", CB_AGG_MAX},
+                                      {"steps_sum", "steps taken, summed", CB_AGG_SUM},
+                                      {"steps_last", "steps taken, last", CB_AGG_LAST}};
 #endif
+#define COUNTER_COUNT (sizeof counters / sizeof counters[0])
+
+/* Keys it declares; the ballistic integrator ignores them, but label=echo shows what arrived. */
+static const cb_key keys[] = {
+    {TEST_PLUGIN_FAULT == FAULT_KEY_NAME ? "Gain" : "gain", CB_KEY_NUMBER, 0, 10,
+     TEST_PLUGIN_FAULT == FAULT_KEY_DEFAULT ? "20" : "1", "a gain, from 0 to 10"},
+    {"substeps", TEST_PLUGIN_FAULT == FAULT_KEY_TYPE ? 7 : CB_KEY_INTEGER,
+     TEST_PLUGIN_FAULT == FAULT_KEY_RANGE ? 8 : 1, TEST_PLUGIN_FAULT == FAULT_KEY_RANGE ? 1 : 8,
+     "1", "sub-steps per step"},
+    {"label", CB_KEY_TEXT, 0, 0, "none", "echo: refuse the world, listing the settings"}};
 
 #if TEST_PLUGIN_FAULT == FAULT_NAME_UNTERMINATED
 #define PLUGIN_NAME unterminated
@@ -196,19 +264,33 @@ static const char* const counter_names[] = {"steps_so_far"};
 #define PLUGIN_NAME "ballistic"
 #endif
 
+static void read_counters(const cb_world* w, double* values) {
+  size_t k;
+  for (k = 0; k < COUNTER_COUNT; ++k)
+    values[k] = (double)w->steps;
+  if (TEST_PLUGIN_FAULT == FAULT_COUNTER_NAN && w->steps >= 2) values[0] = NAN;
+}
+
 static const cb_engine engine = {
-    TEST_PLUGIN_FAULT == FAULT_ABI ? CHAINBENCH_PLUGIN_ABI + 1 : CHAINBENCH_PLUGIN_ABI,
-    TEST_PLUGIN_FAULT == FAULT_SIZE ? sizeof(cb_engine) - 8 : sizeof(cb_engine),
-    PLUGIN_NAME,
-    CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES | (TEST_PLUGIN_FAULT == FAULT_CAPABILITY ? 256u : 0u),
-    sizeof counter_names / sizeof counter_names[0],
-    counter_names,
-    create,
-    set_velocity,
-    TEST_PLUGIN_FAULT == FAULT_NULL_FUNCTION ? NULL : step,
-    read_state,
-    read_counters,
-    destroy};
+    .abi = TEST_PLUGIN_FAULT == FAULT_ABI    ? CHAINBENCH_PLUGIN_ABI + 1
+           : TEST_PLUGIN_FAULT == FAULT_ABI1 ? 1
+                                             : CHAINBENCH_PLUGIN_ABI,
+    .size = TEST_PLUGIN_FAULT == FAULT_SIZE ? sizeof(cb_engine) - 8 : sizeof(cb_engine),
+    .name = PLUGIN_NAME,
+    .capabilities = CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES | CB_CAN_LIFETIMES |
+                    (TEST_PLUGIN_FAULT == FAULT_CAPABILITY ? 256u : 0u),
+    .counter_count = COUNTER_COUNT,
+    .counters = counters,
+    .key_count = sizeof keys / sizeof keys[0],
+    .keys = keys,
+    .create = create,
+    .set_velocity = set_velocity,
+    .step = TEST_PLUGIN_FAULT == FAULT_NULL_FUNCTION ? NULL : step,
+    .read_state = read_state,
+    .read_counters = read_counters,
+    .destroy = destroy,
+    .add_body = add_body,
+    .remove_body = TEST_PLUGIN_FAULT == FAULT_LIFETIMES_NULL ? NULL : remove_body};
 
 #if TEST_PLUGIN_FAULT == FAULT_NO_ENTRY
 CHAINBENCH_PLUGIN_EXPORT const cb_engine* not_the_entry_point(void) {

@@ -8,12 +8,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+#include <cstddef>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <new>
 #include <numeric>
-#include <string>
 #include <vector>
 
 struct cb_world {
@@ -72,30 +72,13 @@ void push_apart(cb_world& w, std::uint32_t i, std::uint32_t j, double ox, double
   w.pushes += 1;
 }
 
-void write_error(char* error, std::size_t size, const std::string& text) {
-  if (size > 0) std::snprintf(error, size, "%s", text.c_str());
-}
-
-cb_world* create(const cb_world_desc* desc, char* error, std::size_t error_size) {
+cb_world* create(const cb_world_desc* desc, char*, std::size_t) {
   auto* w = new (std::nothrow) cb_world;
   if (!w) return nullptr;
+  // chainbench has checked every setting against kKeys and filled in the defaults.
   for (std::uint32_t k = 0; k < desc->setting_count; ++k) {
-    const cb_setting& s = desc->settings[k];
-    if (std::strcmp(s.key, "iterations") != 0) {
-      write_error(error, error_size,
-                  std::string("unknown key \"") + s.key + "\" (keys: iterations)");
-      delete w;
-      return nullptr;
-    }
-    char* end = nullptr;
-    const long v = std::strtol(s.value, &end, 10);
-    if (*s.value == '\0' || *end != '\0' || v < 1 || v > 1000) {
-      write_error(error, error_size,
-                  std::string("iterations must be a whole number in [1, 1000], got ") + s.value);
-      delete w;
-      return nullptr;
-    }
-    w->iterations = static_cast<int>(v);
+    if (std::strcmp(desc->settings[k].key, "iterations") == 0)
+      w->iterations = std::atoi(desc->settings[k].value);
   }
   w->bodies.assign(desc->bodies, desc->bodies + desc->body_count);
   w->by_left.resize(desc->body_count);
@@ -143,7 +126,7 @@ std::uint32_t read_state(const cb_world* w, double* positions, double* velocitie
   return n;
 }
 
-const char* const kCounterNames[] = {"pushes"};
+const cb_counter kCounters[] = {{"pushes", "pair pushes in a step", CB_AGG_MEAN}};
 
 void read_counters(const cb_world* w, double* values) {
   values[0] = w->pushes;
@@ -153,18 +136,26 @@ void destroy(cb_world* w) {
   delete w;
 }
 
+// Positional, as C++17 has it: the fields in the order engine_plugin.h declares them.
+const cb_key kKeys[] = {
+    {"iterations", CB_KEY_INTEGER, 1, 1000, "4", "passes over the overlapping pairs per step"}};
+
 const cb_engine kEngine = {CHAINBENCH_PLUGIN_ABI,
                            sizeof(cb_engine),
                            "relaxation",
                            CB_CAN_KINEMATIC | CB_CAN_AXIS_DRIVES,
                            1,
-                           kCounterNames,
+                           kCounters,
+                           1,
+                           kKeys,
                            create,
                            set_velocity,
                            step,
                            read_state,
                            read_counters,
-                           destroy};
+                           destroy,
+                           nullptr,   // add_body: no CB_CAN_LIFETIMES, so chainbench refuses
+                           nullptr};  // scenes whose bodies come and go
 
 }  // namespace
 

@@ -78,8 +78,7 @@ Scene make_scene(std::string_view name, const std::vector<std::string>& sets) {
     });
     if (again != it) {
       throw InputError("--set " + shown + ": given twice (" + cut_for_message(*again) + ", then " +
-                       cut_for_message(kv) + ")" +
-                       (key == "steps" ? "; --steps sets it too" : ""));
+                       cut_for_message(kv) + ")" + (key == "steps" ? "; --steps sets it too" : ""));
     }
     const auto p = std::find_if(params.begin(), params.end(),
                                 [&](const SceneParam& q) { return q.key == key; });
@@ -95,8 +94,8 @@ Scene make_scene(std::string_view name, const std::vector<std::string>& sets) {
       throw InputError("--set " + shown + ": must be a whole number, got " +
                        cut_for_message(kv.substr(eq + 1)));
     if (v < p->min || v > p->max) {
-      throw InputError("--set " + shown + ": " + num(v) + " is out of range [" + num(p->min) + ", " +
-                       num(p->max) + "] for scene " + recipe->name);
+      throw InputError("--set " + shown + ": " + num(v) + " is out of range [" + num(p->min) +
+                       ", " + num(p->max) + "] for scene " + recipe->name);
     }
     values.set(key, v);
   }

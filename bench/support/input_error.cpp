@@ -35,7 +35,8 @@ double parse_number(const std::string& what, const std::string& text) {
 long long parse_integer(const std::string& what, const std::string& text, long long lo,
                         long long hi) {
   const double v = parse_number(what, text);
-  if (v != std::floor(v)) throw InputError(what + ": \"" + cut_for_message(text) + "\" is not a whole number");
+  if (v != std::floor(v))
+    throw InputError(what + ": \"" + cut_for_message(text) + "\" is not a whole number");
   if (v < static_cast<double>(lo) || v > static_cast<double>(hi)) {
     throw InputError(what + ": " + cut_for_message(text) + " is out of range [" +
                      std::to_string(lo) + ", " + std::to_string(hi) + "]");

@@ -1,7 +1,8 @@
 // Bodies that come and go (SceneBody::from_step, to_step): a scene file whose bodies enter and
 // leave runs in every engine that adds and removes bodies with the right answer, a window outside
-// a body's life is refused, plugins without CB_CAN_LIFETIMES are refused by name, spawn_rain meets its stated
-// answer, and the chain solver's runs with spawns are the same bits twice and on two threads.
+// a body's life is refused, plugins without CB_CAN_LIFETIMES are refused by name, spawn_rain meets
+// its stated answer, and the chain solver's runs with spawns are the same bits twice and on two
+// threads.
 #include "input_error.h"
 #include "registry.h"
 #include "runner.h"

@@ -19,24 +19,35 @@ cd "$(dirname "$0")/.."
 
 usage() {
   echo "usage: $0 [SECONDS] [TARGET...]   or   $0 --runs N [--jobs J] [TARGET...]" >&2
-  echo "  SECONDS, N, J: whole numbers, at least 1; TARGET: world, scene_file or plugin" >&2
+  echo "  SECONDS, N, J: whole numbers from 1, without leading zeros; J at most N;" >&2
+  echo "  TARGET: world, scene_file or plugin" >&2
   exit 2
 }
+# A whole number from 1 to 999,999,999,999 written without a leading zero (which bash would read
+# as octal) and short enough never to overflow.
+whole() { [[ "$1" =~ ^[1-9][0-9]{0,11}$ ]]; }
 runs=""
 seconds=60
 jobs=1
 if [[ "${1:-}" == "--runs" ]]; then
-  [[ $# -ge 2 && "$2" =~ ^[0-9]+$ && "$2" -ge 1 ]] || usage
+  { [[ $# -ge 2 ]] && whole "$2"; } || usage
   runs=$2
   shift 2
   if [[ "${1:-}" == "--jobs" ]]; then
-    [[ $# -ge 2 && "$2" =~ ^[0-9]+$ && "$2" -ge 1 && "$2" -le "$runs" ]] || usage
+    { [[ $# -ge 2 ]] && whole "$2"; } || usage
     jobs=$2
     shift 2
+    if (( jobs > runs )); then
+      echo "fuzz.sh: --jobs $jobs is more than --runs $runs: each process needs a run" >&2
+      usage
+    fi
   fi
-elif [[ "${1:-}" =~ ^[0-9]+$ ]]; then
+elif [[ "${1:-}" == "--jobs" ]]; then
+  echo "fuzz.sh: --jobs follows --runs N" >&2
+  usage
+elif [[ "${1:-}" =~ ^[0-9] ]]; then
+  whole "$1" || usage
   seconds=$1
-  [[ "$seconds" -ge 1 ]] || usage
   shift
 fi
 all=(world scene_file plugin)

@@ -82,7 +82,8 @@ std::string checked_key_value(const std::string& where, const KeyDef& key,
     if (!std::filesystem::is_regular_file(value, ec)) {
       throw InputError(
           where + ": " + key.name + ": " +
-          (std::filesystem::exists(value, ec) ? "not a regular file: " : "no such file: ") + value);
+          (std::filesystem::exists(value, ec) ? "not a regular file: " : "no such file: ") +
+          cut_for_message(value));
     }
     const std::filesystem::path absolute = std::filesystem::absolute(value, ec);
     return ec ? value : absolute.lexically_normal().string();
@@ -94,7 +95,7 @@ std::string checked_key_value(const std::string& where, const KeyDef& key,
   if (!key.choices.empty()) {
     if (std::find(key.choices.begin(), key.choices.end(), value) == key.choices.end()) {
       throw InputError(where + ": " + key.name + " must be one of " + join(key.choices, "|") +
-                       ", got \"" + value + "\"");
+                       ", got \"" + cut_for_message(value) + "\"");
     }
     return value;
   }
@@ -105,8 +106,8 @@ std::string checked_key_value(const std::string& where, const KeyDef& key,
   }
   const double v = parse_number(where + ": " + key.name, value);
   if (v < key.min || v > key.max) {
-    throw InputError(where + ": " + key.name + ": " + value + " is out of range [" +
-                     shortest(key.min) + ", " + shortest(key.max) + "]");
+    throw InputError(where + ": " + key.name + ": " + cut_for_message(value) +
+                     " is out of range [" + shortest(key.min) + ", " + shortest(key.max) + "]");
   }
   return shortest(v);
 }
@@ -117,7 +118,7 @@ void add_key_settings(const std::string& where, const std::vector<KeyDef>& keys,
   for (const auto& g : given) {
     const std::string& key = g.first;  // named: clang before 16 cannot capture a binding
     if (std::none_of(keys.begin(), keys.end(), [&](const KeyDef& k) { return k.name == key; })) {
-      throw InputError(where + ": unknown key \"" + key + "\" for " + spec.engine +
+      throw InputError(where + ": unknown key \"" + cut_for_message(key) + "\" for " + spec.engine +
                        " (keys: " + key_names(keys) + ")");
     }
   }
@@ -179,6 +180,9 @@ std::string EngineSpec::label() const {
 
 EngineSpec parse_engine_spec(std::string_view text) {
   const std::string where = "engine spec \"" + cut_for_message(std::string(text)) + "\"";
+  // Specs reach the terminal, the plugin and JSON outputs: UTF-8 text only.
+  if (const std::string problem = text_problem(std::string(text)); !problem.empty())
+    throw InputError(where + ": " + problem);
   const std::size_t colon = text.find(':');
   const std::string name(text.substr(0, colon));
   const auto& registry = engine_registry();
@@ -188,8 +192,8 @@ EngineSpec parse_engine_spec(std::string_view text) {
     std::vector<std::string> known;
     for (const EngineDef& e : registry)
       known.push_back(e.name);
-    throw InputError(where + ": unknown engine \"" + name + "\" (known: " + join(known, ", ") +
-                     ")");
+    throw InputError(where + ": unknown engine \"" + cut_for_message(name) +
+                     "\" (known: " + join(known, ", ") + ")");
   }
   // Keys the engine declares, and the others, which may follow from them (more_keys).
   std::vector<std::pair<std::string, std::string>> given, rest;
@@ -197,13 +201,14 @@ EngineSpec parse_engine_spec(std::string_view text) {
     for (const std::string& kv : split(text.substr(colon + 1), ",")) {
       const std::size_t eq = kv.find('=');
       if (eq == std::string::npos || eq == 0) {
-        throw InputError(where + ": \"" + kv + "\" is not key=value");
+        throw InputError(where + ": \"" + cut_for_message(kv) + "\" is not key=value");
       }
       const std::string key = kv.substr(0, eq), value = kv.substr(eq + 1);
       auto seen = [&](const auto& list) {
         return std::any_of(list.begin(), list.end(), [&](const auto& g) { return g.first == key; });
       };
-      if (seen(given) || seen(rest)) throw InputError(where + ": key \"" + key + "\" given twice");
+      if (seen(given) || seen(rest))
+        throw InputError(where + ": key \"" + cut_for_message(key) + "\" given twice");
       const bool declared = std::any_of(def->keys.begin(), def->keys.end(),
                                         [&](const KeyDef& k) { return k.name == key; });
       (declared ? given : rest).emplace_back(key, value);
@@ -225,7 +230,7 @@ std::vector<EngineSpec> parse_grid(std::string_view text) {
     for (const std::string& part : split(text.substr(colon + 1), ";")) {
       const std::size_t eq = part.find('=');
       if (eq == std::string::npos || eq == 0 || eq + 1 == part.size()) {
-        throw InputError(where + ": \"" + part + "\" is not key=value,value,...");
+        throw InputError(where + ": \"" + cut_for_message(part) + "\" is not key=value,value,...");
       }
       axes.emplace_back(part.substr(0, eq), split(part.substr(eq + 1), ","));
     }

@@ -333,7 +333,7 @@ void read_relation(Reader& r, const json& j, const std::string& at,
     if (!r.string(v, path, name)) return false;
     const auto it = by_name.find(name);
     if (it == by_name.end()) {
-      r.problem(path, "no body is named \"" + name + "\"");
+      r.problem(path, "no body is named \"" + cut_for_message(name) + "\"");
       return false;
     }
     out = it->second;
@@ -441,7 +441,7 @@ void read_expectation(Reader& r, const json& j, const std::string& at,
           e.body = Expectation::kEveryDynamic;
         }
       } else if (const auto it = by_name.find(name); it == by_name.end()) {
-        r.problem(at + ".body", "no body is named \"" + name + "\"");
+        r.problem(at + ".body", "no body is named \"" + cut_for_message(name) + "\"");
       } else {
         e.body = it->second;
       }
@@ -576,7 +576,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
     if (!r.string(j, path, name)) return;
     const auto it = by_name.find(name);
     if (it == by_name.end()) {
-      r.problem(path, "no body is named \"" + name + "\"");
+      r.problem(path, "no body is named \"" + cut_for_message(name) + "\"");
     } else {
       out = it->second;
     }

@@ -6,14 +6,69 @@
 
 namespace chainbench {
 
+namespace {
+
+// The length of the well-formed UTF-8 character at text[i], or 0 when none starts there.
+std::size_t utf8_length(const std::string& text, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char lead = byte(i);
+  const std::size_t n = lead < 0x80u           ? 1
+                        : (lead >> 5) == 0x6u  ? 2
+                        : (lead >> 4) == 0xeu  ? 3
+                        : (lead >> 3) == 0x1eu ? 4
+                                               : 0;
+  if (n == 0 || i + n > text.size()) return 0;
+  for (std::size_t k = 1; k < n; ++k) {
+    if ((byte(i + k) & 0xc0u) != 0x80u) return 0;
+  }
+  if (n == 2 && lead < 0xc2u) return 0;                          // overlong
+  if (n == 3 && lead == 0xe0u && byte(i + 1) < 0xa0u) return 0;  // overlong
+  if (n == 4 && (lead > 0xf4u || (lead == 0xf0u && byte(i + 1) < 0x90u))) return 0;
+  return n;
+}
+
+bool control(unsigned char c) {
+  return c < 0x20u || c == 0x7fu;
+}
+
+}  // namespace
+
+std::string text_problem(const std::string& text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = utf8_length(text, i);
+    if (n == 0 || (n == 1 && control(static_cast<unsigned char>(text[i])))) {
+      constexpr char kHex[] = "0123456789abcdef";
+      const auto c = static_cast<unsigned char>(text[i]);
+      return std::string("holds the byte 0x") + kHex[c >> 4] + kHex[c & 15u] + " at offset " +
+             std::to_string(i) + " (text here is UTF-8 without control characters)";
+    }
+    i += n;
+  }
+  return "";
+}
+
 std::string cut_for_message(const std::string& text) {
   constexpr std::size_t kShown = 80;
-  if (text.size() <= kShown) return text;
-  // Cut at a UTF-8 character boundary, so that the cut never leaves half a character.
-  std::size_t end = kShown;
-  while (end > 0 && (static_cast<unsigned char>(text[end]) & 0xc0u) == 0x80u)
-    --end;
-  return text.substr(0, end) + "\u2026(" + std::to_string(text.size()) + " bytes)";
+  std::string out;
+  std::size_t i = 0;
+  while (i < text.size() && i < kShown) {
+    const std::size_t n = utf8_length(text, i);
+    if (n == 0 || (n == 1 && control(static_cast<unsigned char>(text[i])))) {
+      // Shown as \xNN, so that an echoed input can neither drive the terminal nor make an
+      // output file that is not UTF-8.
+      constexpr char kHex[] = "0123456789abcdef";
+      const auto c = static_cast<unsigned char>(text[i]);
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 15u];
+      ++i;
+    } else {
+      out.append(text, i, n);  // whole characters only: a cut never leaves half of one
+      i += n;
+    }
+  }
+  if (i < text.size()) out += "\u2026(" + std::to_string(text.size()) + " bytes)";
+  return out;
 }
 
 double parse_number(const std::string& what, const std::string& text) {

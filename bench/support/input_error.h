@@ -12,8 +12,11 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// `text` as a message may echo it: whole up to 80 bytes, else its first 80 and "…(N bytes)".
+// `text` as a message may echo it: whole up to 80 bytes, else its first 80 and "…(N bytes)";
+// control characters and bytes that are not UTF-8 are shown as \xNN.
 std::string cut_for_message(const std::string& text);
+// Empty when `text` is UTF-8 without control characters; else which byte is not, and where.
+std::string text_problem(const std::string& text);
 // Parses all of `text` as a finite number, in the grammar of std::from_chars as every
 // command-line number (no '+', blanks or hexadecimal), or throws InputError("<what>: ...").
 double parse_number(const std::string& what, const std::string& text);

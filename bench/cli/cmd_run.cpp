@@ -76,6 +76,11 @@ int run_scene(const RunArgs& a) {
   options.metrics = parse_metric_selection(a.metrics);
   options.isolate = true;  // a plugin that dies is its row's crash, not the end of the run
   if (a.timeout > 0.0) options.timeout_s = a.timeout;
+  std::vector<EngineSpec> read = engines;
+  if (reference) read.push_back(*reference);
+  refuse_outputs_over_engine_files(
+      read,
+      {{"--json", &a.json}, {"--csv", &a.csv}, {"--trace", &a.trace}, {"--replay", &a.replay}});
   if (!required.empty()) {
     // A verdict needs stability and penetration.
     options.metrics.stability = options.metrics.penetration = true;

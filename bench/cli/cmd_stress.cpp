@@ -51,6 +51,7 @@ std::string describe_matrix(const std::vector<StressCase>& cases,
 int run(const StressArgs& a) {
   const std::vector<EngineSpec> engines =
       a.engines.empty() ? default_engines() : parse_engine_list(a.engines);
+  refuse_outputs_over_engine_files(engines, {{"--json", &a.json}});
   // Substrings rather than a regular expression: std::regex is slow to build and GCC 12 warns
   // inside it under the sanitizers.
   std::vector<std::string> wanted;

@@ -1,5 +1,6 @@
 // chainbench sweep: error against run time over a grid of engine settings.
 #include "commands.h"
+#include "engine_choice.h"
 #include "input_error.h"
 #include "interrupt.h"
 #include "output_file.h"
@@ -97,6 +98,9 @@ int run(const SweepArgs& a) {
   }
   const EngineSpec reference =
       a.reference.empty() ? accurate_reference() : parse_engine_spec(a.reference);
+  std::vector<EngineSpec> read = grid;
+  read.push_back(reference);
+  refuse_outputs_over_engine_files(read, {{"--json", &a.json}, {"--csv", &a.csv}});
   // Points are numbered over the scenes in the order they run; a shard runs its part of them.
   const Shard shard = a.shard.empty() ? Shard{} : parse_shard(a.shard);
   // A part is only of use merged, and merge reads the parts' JSON.

@@ -97,4 +97,21 @@ std::string default_engine_list() {
   return s;
 }
 
+void refuse_outputs_over_engine_files(const std::vector<EngineSpec>& specs,
+                                      const std::vector<NamedFile>& outputs) {
+  std::vector<std::string> files;
+  for (const EngineSpec& spec : specs) {
+    for (const EngineDef& def : engine_registry()) {
+      if (def.name != spec.engine) continue;
+      for (const KeyDef& key : def.keys) {
+        if (key.file) files.push_back(spec.get(key.name));
+      }
+    }
+  }
+  std::vector<NamedFile> inputs;
+  for (const std::string& file : files)  // filled first: inputs point into it
+    inputs.emplace_back("--engines", &file);
+  refuse_clashing_files(outputs, inputs);
+}
+
 }  // namespace chainbench

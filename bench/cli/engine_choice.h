@@ -4,6 +4,7 @@
 #pragma once
 
 #include "engine_spec.h"
+#include "output_file.h"
 #include "scene.h"
 
 #include <string>
@@ -29,5 +30,10 @@ EngineChoice choose_engines(const std::string& list, const std::vector<const Sce
 
 // The default engine list as `--help` shows it.
 std::string default_engine_list();
+
+// InputError (exit 2) if an output names a file one of `specs` reads (a plugin's library, by
+// device and inode as refuse_clashing_files compares): writing it would replace what runs.
+void refuse_outputs_over_engine_files(const std::vector<EngineSpec>& specs,
+                                      const std::vector<NamedFile>& outputs);
 
 }  // namespace chainbench

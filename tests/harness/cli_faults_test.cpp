@@ -207,6 +207,25 @@ TEST(CliFaults, AnOutputThatNamesAnInputIsRefused) {
       << merge.out;
   EXPECT_EQ(read(p1), part);
   EXPECT_EQ(chainbench("merge " + p1 + " " + p2 + " --json " + dir + "whole.json").status, 0);
+
+  // A plugin's library is an input too: no output may replace it (here through a symlink).
+  const std::string none = std::string(CHAINBENCH_TEST_PLUGINS) + "/libtest_plugin_none.so";
+  const std::string lib = dir + "p.so", lib_link = dir + "p_link.so";
+  fs::copy_file(none, lib);
+  fs::create_symlink(lib, lib_link);
+  const std::string library = read(lib);
+  for (const std::string& call :
+       {"run --scene stack --reference none --engines chain,plugin:path=" + lib + " --json " +
+            lib_link,
+        "run --scene stack --reference none --engines chain,plugin:path=" + lib + " --csv " + lib,
+        "sweep --scene stack --grid plugin:path=" + lib + " --grid chain --json " + lib_link,
+        "stress --quick --engines plugin:path=" + lib + " --json " + lib}) {
+    SCOPED_TRACE(call);
+    const Result r = chainbench(call);
+    EXPECT_EQ(r.status, 2) << r.out;
+    EXPECT_NE(r.out.find("is the input --engines"), std::string::npos) << r.out;
+    EXPECT_EQ(read(lib), library);
+  }
 }
 
 // A plugin that crashes, aborts, exits or hangs mid-run is that engine's crash or hang row; the

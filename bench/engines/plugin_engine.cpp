@@ -1,4 +1,4 @@
-// A user's own resolver, loaded from a shared library through the C ABI of//
+// A user's own resolver, loaded from a shared library through the C ABI of
 // bench/include/chainbench/engine_plugin.h: `plugin:path=FILE[,key=value...]`.
 //
 // What a plugin returns is checked as it comes: a library that cannot be loaded, has no entry
@@ -88,14 +88,13 @@ cb_body to_plugin(const Scene& scene, const SceneBody& b) {
 class PluginEngine final : public Engine {
  public:
   PluginEngine(std::shared_ptr<const Plugin> plugin, const EngineSpec& spec, const Scene& scene)
-      : owner_(std::move(plugin)),
-        plugin_(*owner_),
+      : plugin_(std::move(plugin)),
         drives_(scene),
         names_(scene.bodies.size()),
         in_world_(scene.bodies.size()),
         positions_(2 * scene.bodies.size()),
         velocities_(2 * scene.bodies.size()),
-        counters_(plugin_.counters.size()) {
+        counters_(plugin_->counters.size()) {
     std::vector<cb_body> bodies;
     bodies.reserve(scene.bodies.size());
     for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
@@ -133,14 +132,14 @@ class PluginEngine final : public Engine {
     desc.driver_count = static_cast<std::uint32_t>(drivers.size());
     desc.drivers = drivers.data();
     char error[kErrorSize] = "";
-    world_ = plugin_.api->create(&desc, error, sizeof error);
+    world_ = plugin_->api->create(&desc, error, sizeof error);
     if (!world_) {
-      throw InputError(describe(plugin_) + ": could not build scene " + scene.name + ": " +
+      throw InputError(describe(*plugin_) + ": could not build scene " + scene.name + ": " +
                        plugin_error(error));
     }
   }
 
-  ~PluginEngine() override { plugin_.api->destroy(world_); }
+  ~PluginEngine() override { plugin_->api->destroy(world_); }
   PluginEngine(const PluginEngine&) = delete;
   PluginEngine& operator=(const PluginEngine&) = delete;
 
@@ -149,21 +148,21 @@ class PluginEngine final : public Engine {
     for (const Drive& d : drives_.active()) {
       const std::uint32_t axes =
           (d.hold_x ? std::uint32_t{CB_AXIS_X} : 0u) | (d.hold_y ? std::uint32_t{CB_AXIS_Y} : 0u);
-      if (plugin_.api->set_velocity(world_, static_cast<std::uint32_t>(d.body), d.velocity.x,
-                                    d.velocity.y, axes) != 0) {
-        throw InputError(describe(plugin_) + ": refused to set the velocity of body " +
+      if (plugin_->api->set_velocity(world_, static_cast<std::uint32_t>(d.body), d.velocity.x,
+                                     d.velocity.y, axes) != 0) {
+        throw InputError(describe(*plugin_) + ": refused to set the velocity of body " +
                          names_[d.body] + " at step " + std::to_string(step_index));
       }
     }
     char error[kErrorSize] = "";
-    const int rc = plugin_.api->step(world_, error, sizeof error);
+    const int rc = plugin_->api->step(world_, error, sizeof error);
     // Counted from 1, as verdicts count "at step N": the state after N steps.
     if (rc < 0) {
-      throw InputError(describe(plugin_) + ": step " + std::to_string(step_index + 1) +
+      throw InputError(describe(*plugin_) + ": step " + std::to_string(step_index + 1) +
                        " failed: " + plugin_error(error));
     }
     if (rc > 1) {
-      throw InputError(describe(plugin_) + ": step " + std::to_string(step_index + 1) +
+      throw InputError(describe(*plugin_) + ": step " + std::to_string(step_index + 1) +
                        " returned " + std::to_string(rc) +
                        ", which the plugin contract does not allow (0, 1 when cut short, or "
                        "negative on error)");
@@ -174,10 +173,10 @@ class PluginEngine final : public Engine {
 
   void read_state(BodyState& out) const override {
     const auto n = static_cast<std::uint32_t>(names_.size());
-    const std::uint32_t held =
-        plugin_.api->read_state(world_, positions_.data(), velocities_.data(), out.angle.data(), n);
+    const std::uint32_t held = plugin_->api->read_state(world_, positions_.data(),
+                                                        velocities_.data(), out.angle.data(), n);
     if (held != n) {
-      throw InputError(describe(plugin_) + ": its world holds " + std::to_string(held) +
+      throw InputError(describe(*plugin_) + ": its world holds " + std::to_string(held) +
                        " bodies, the scene " + std::to_string(n));
     }
     for (std::size_t i = 0; i < n; ++i) {
@@ -186,7 +185,7 @@ class PluginEngine final : public Engine {
                                 velocities_[2 * i + 1], out.angle[i]};
       for (const double v : values) {
         if (!std::isfinite(v)) {
-          throw InputError(describe(plugin_) + ": returned a non-finite state for body " +
+          throw InputError(describe(*plugin_) + ": returned a non-finite state for body " +
                            names_[i]);
         }
       }
@@ -195,13 +194,13 @@ class PluginEngine final : public Engine {
     }
   }
 
-  std::span<const CounterDef> counter_defs() const override { return plugin_.counters; }
+  std::span<const CounterDef> counter_defs() const override { return plugin_->counters; }
   std::span<const double> counters() const override {
     if (counters_.empty()) return counters_;
-    plugin_.api->read_counters(world_, counters_.data());
+    plugin_->api->read_counters(world_, counters_.data());
     for (std::size_t k = 0; k < counters_.size(); ++k) {
       if (!std::isfinite(counters_[k])) {
-        throw InputError(describe(plugin_) + ": counter " + plugin_.counters[k].name + " is " +
+        throw InputError(describe(*plugin_) + ": counter " + plugin_->counters[k].name + " is " +
                          (std::isnan(counters_[k]) ? "NaN" : "infinite") + " after step " +
                          std::to_string(steps_) + " (a counter must be a finite number)");
       }
@@ -217,17 +216,16 @@ class PluginEngine final : public Engine {
   void change(std::size_t index, bool add) {
     const auto body = static_cast<std::uint32_t>(index);
     const int rc =
-        add ? plugin_.api->add_body(world_, body) : plugin_.api->remove_body(world_, body);
+        add ? plugin_->api->add_body(world_, body) : plugin_->api->remove_body(world_, body);
     if (rc != 0) {
-      throw InputError(describe(plugin_) + ": refused to " + (add ? "add" : "remove") + " body " +
+      throw InputError(describe(*plugin_) + ": refused to " + (add ? "add" : "remove") + " body " +
                        names_[index] + " (" + (add ? "add_body" : "remove_body") + " returned " +
                        std::to_string(rc) + ")");
     }
     in_world_[index] = add ? 1 : 0;
   }
 
-  std::shared_ptr<const Plugin> owner_;
-  const Plugin& plugin_;
+  std::shared_ptr<const Plugin> plugin_;  // shared: the loaded library outlives every world
   cb_world* world_ = nullptr;
   DriveSchedule drives_;
   std::vector<std::string> names_;

@@ -43,9 +43,6 @@ scenes=(stack pyramid many_pyramids mass_ratio_stack heavy_on_light overlap_reco
         push_row push_into_wall push_stack squeeze seed_stack seed_squeeze seed_falling_row
         rain smash bulldozer spawn_rain)
 traced=(stack overlap_recovery push_stack squeeze seed_squeeze)
-# Scenes whose bodies come and go: replay pages and traces do not follow them yet, so they run
-# without one.
-unreplayed=(spawn_rain)
 # Every reference as games ship it and as it runs by default: sleeping on and off (and Box2D v3
 # where it is built), so that the report's ratios answer against each.
 engines=defaults,box2d:sleep=1,chipmunk:sleep=1
@@ -59,9 +56,6 @@ for scene in "${scenes[@]}"; do
     [[ "$t" == "$scene" ]] && trace=(--trace "$out/traces/$scene.csv")
   done
   replay=(--replay "$out/replay/$scene.html")
-  for u in "${unreplayed[@]}"; do
-    [[ "$u" == "$scene" ]] && replay=()
-  done
   "$cb" run --scene "$scene" --engines "$engines" --json "$out/runs/$scene.json" \
     --csv "$out/runs/$scene.csv" "${trace[@]}" "${replay[@]}" > "$out/runs/$scene.txt"
 done

@@ -86,6 +86,7 @@ class StepRecorder final : public StepObserver {
     w_.list(std::span<const double>(v.state->angle));
     w_.list(v.displacement);
     w_.list(v.penetration);
+    w_.list(v.present);
     w_.list(v.counters);
     w_.pod<std::uint64_t>(v.events.size());
     for (const EngineEvent& e : v.events) {
@@ -155,7 +156,7 @@ std::string write_run(const EngineRun& run, StepRecorder* steps) {
     w.pod(run.expect->max_error), w.pod(run.expect->pass);
     w.list(std::span<const ExpectOutcome>(run.expect->entries));
   }
-  w.pod(run.interrupted);
+  w.pod(run.interrupted), w.pod(run.final_state);
   w.pod<std::uint64_t>(run.defs.size());
   for (const CounterDef& d : run.defs) {
     w.str(d.name), w.pod(d.aggregate), w.str(d.help), w.str(d.column);
@@ -192,6 +193,7 @@ EngineRun read_run(const Scene& scene, const EngineSpec& spec, const std::string
     run.expect = std::move(e);
   }
   run.interrupted = r.pod<bool>();
+  run.final_state = r.pod<int>();
   const auto defs = r.pod<std::uint64_t>();
   for (std::uint64_t k = 0; k < defs; ++k) {
     CounterDef d;
@@ -215,8 +217,9 @@ EngineRun read_run(const Scene& scene, const EngineSpec& spec, const std::string
     state.position = r.list<Vec2d>();
     state.velocity = r.list<Vec2d>();
     state.angle = r.list<double>();
-    const std::vector<double> displacement = r.list<double>(), penetration = r.list<double>(),
-                              counters = r.list<double>();
+    const std::vector<double> displacement = r.list<double>(), penetration = r.list<double>();
+    const std::vector<std::uint8_t> present = r.list<std::uint8_t>();
+    const std::vector<double> counters = r.list<double>();
     std::vector<EngineEvent> events(r.pod<std::uint64_t>());
     for (EngineEvent& e : events) {
       kinds.push_back(r.str());
@@ -226,6 +229,7 @@ EngineRun read_run(const Scene& scene, const EngineSpec& spec, const std::string
     v.degraded = r.pod<bool>();
     v.state = &state;
     v.displacement = displacement, v.penetration = penetration, v.counters = counters;
+    v.present = present;
     v.events = events;
     for (StepObserver* o : observers)
       o->observe(v);

@@ -51,13 +51,21 @@ BodyState initial_state(const Scene& scene) {
 
 PairOverlap MetricsRecorder::deepest_overlap(const Scene& scene, const BodyState& state, int step) {
   PairScan scan(scene);
-  scan.build(state, state);
+  const bool lifetimes = scene.has_lifetimes();
+  if (lifetimes) {  // a body out of the world is left out of the scan, as a lost one is
+    BodyState present = state;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+      if (!scene.bodies[i].alive(step)) present.position[i] = {HUGE_VAL, HUGE_VAL};
+    }
+    scan.build(present, present);
+  } else {
+    scan.build(state, state);
+  }
   PairOverlap deepest;
   deepest.step = step;
-  const bool lifetimes = scene.has_lifetimes();
   scan.for_each_pair([&](std::size_t i, std::size_t j) {
     // A body that is not in the world in this state overlaps nothing.
-    if (lifetimes && (!scene.bodies[i].alive(step) || !scene.bodies[j].alive(step))) return;
+    if (lifetimes && !meet(scene.bodies[i], scene.bodies[j], step)) return;
     const double d = scan.depth(state, i, j);
     if (d > deepest.depth ||
         (d == deepest.depth && d > 0.0 && pair_key(i, j) < pair_key(deepest.a, deepest.b)))
@@ -69,6 +77,8 @@ PairOverlap MetricsRecorder::deepest_overlap(const Scene& scene, const BodyState
 MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
     : sel_(selection),
       scene_(scene),
+      presence_(scene),
+      lives_(presence_.any()),
       dt_(scene.dt),
       bounds_(motion_bounds(scene)),
       cache_(scene),
@@ -89,6 +99,23 @@ MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
   still_.reserve(n);
   candidates_.reserve(n);
   efd_written_.reserve(dynamic_.size());
+  if (lives_) {
+    cache_.follow(presence_);
+    left_out_.reserve(dynamic_.size());
+  }
+}
+
+bool MetricsRecorder::escaped(std::size_t i, Vec2d p) const {
+  const Vec2d p0 = scene_.bodies[i].center;
+  const double d = std::hypot(p.x - p0.x, p.y - p0.y);
+  return std::isfinite(d) && d > bounds_.reach[i];
+}
+
+void MetricsRecorder::judge_leavers(const BodyState& before) {
+  for (const std::uint32_t i : presence_.changed()) {
+    if (presence_.was(i) && !presence_.in(i) && scan().dynamic(i) && escaped(i, before.position[i]))
+      left_out_.insert(std::upper_bound(left_out_.begin(), left_out_.end(), i), i);
+  }
 }
 
 Metrics MetricsRecorder::result(const BodyState& last) const {
@@ -115,10 +142,17 @@ Metrics MetricsRecorder::result(const BodyState& last) const {
     m.blow_up_step = blow_up_step_;
     m.blow_up_speed = blow_up_speed_;
     m.blow_up_bound = blow_up_ ? blow_up_bound_ : 0.0;
+    // The bodies in the world at the end where they are, those that left where they were last.
+    const int end = std::max(last_step_, 0);
     for (const std::size_t i : dynamic_) {
-      const Vec2d p = last.position[i], p0 = scene_.bodies[i].center;
-      const double d = std::hypot(p.x - p0.x, p.y - p0.y);
-      if (std::isfinite(d) && d > bounds_.reach[i]) m.escaped.push_back(i);
+      if (lives_ && !scene_.bodies[i].alive(end)) continue;
+      if (escaped(i, last.position[i])) m.escaped.push_back(i);
+    }
+    if (!left_out_.empty()) {
+      const std::size_t mid = m.escaped.size();
+      m.escaped.insert(m.escaped.end(), left_out_.begin(), left_out_.end());
+      std::inplace_merge(m.escaped.begin(), m.escaped.begin() + static_cast<std::ptrdiff_t>(mid),
+                         m.escaped.end());
     }
     m.in_bounds = m.escaped.empty();
     m.tunnelled = tunnels_.count() > 0;
@@ -149,12 +183,14 @@ std::string hex(std::uint64_t v) {
 }
 
 PositionError position_error(const Scene& scene, std::span<const Vec2d> run,
-                             std::span<const Vec2d> reference) {
+                             std::span<const Vec2d> reference, int state) {
   PositionError e;
   std::size_t n = 0;
   double sum = 0.0;
+  const bool lives = state >= 0 && scene.has_lifetimes();
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (scene.bodies[i].kind != BodyKind::kDynamic) continue;
+    if (lives && !scene.bodies[i].alive(state)) continue;
     double d = std::hypot(run[i].x - reference[i].x, run[i].y - reference[i].y);
     if (!std::isfinite(d)) return {HUGE_VAL, HUGE_VAL};  // a lost body: no finite error
     if (below_resolution(d, std::max(magnitude(run[i]), magnitude(reference[i])))) d = 0.0;

@@ -6,6 +6,7 @@
 #include "motion_bounds.h"
 #include "pair_cache.h"
 #include "pair_scan.h"
+#include "presence.h"
 #include "scene.h"
 #include "tunnelling.h"
 
@@ -86,6 +87,12 @@ class MetricsRecorder {
   // The cost follows what moved: a step that moved nothing costs one pass comparing the two
   // states, and one that moved some bodies a pass more over the pairs listed for them by a
   // PairCache (metrics_observe.cpp). The figures are those of a full scan.
+  //
+  // Where bodies come and go (SceneBody::from_step), a body counts only while it is in the world
+  // (presence.h): in the overlaps of the states it is in, and in displacement, speed, blow-up and
+  // tunnelling over the steps it takes part in (both states of the step). What the states hold
+  // for a body outside its life is never read for a figure, so a body entering is no move, and
+  // one that left is judged for escape where it was last.
   void observe(const BodyState& before, const BodyState& after, int step, bool per_body,
                bool depth = false, const std::vector<std::uint32_t>* changed = nullptr);
   // Every step from now on scans every body: the check the shortcuts are tested against.
@@ -99,6 +106,8 @@ class MetricsRecorder {
   std::span<const double> step_penetration() const { return step_pen_; }
   // The deepest overlap of the state after the last observed step (for expectations).
   const PairOverlap& last_deepest() const { return deepest_; }
+  // Which bodies are in the world in the state of the last observed step.
+  const Presence& presence() const { return presence_; }
 
   // The deepest overlap in `state`, found with a scan of its own (the initial state, say).
   static PairOverlap deepest_overlap(const Scene& scene, const BodyState& state, int step);
@@ -119,11 +128,28 @@ class MetricsRecorder {
                   const std::vector<std::uint32_t>& changed);
   // Whether body i moved in the step, or was left with a velocity or a position that is not finite
   // (whose displacement a full pass finds to be NaN every step).
+  // A body out of the world in both states never moved, whatever its entries hold.
   bool moved(std::size_t i, const BodyState& before, const BodyState& after) const {
-    return after.position[i].x != before.position[i].x ||
-           after.position[i].y != before.position[i].y ||
-           (scan().rotated() && after.angle[i] != before.angle[i]) || keeps_moving(i, after);
+    return (after.position[i].x != before.position[i].x ||
+            after.position[i].y != before.position[i].y ||
+            (scan().rotated() && after.angle[i] != before.angle[i]) || keeps_moving(i, after)) &&
+           (!lives_ || presence_.in(i) || presence_.was(i));
   }
+  // Merges into moved_ the bodies that entered or left in the step (their pairs change); false
+  // when more than half of the bodies are then on it.
+  bool add_changes(std::size_t bodies);
+  // Whether body i took part in the step observed: in the world before and after it.
+  bool stepped(std::size_t i) const { return !lives_ || presence_.stepped(i); }
+  // Whether body i is in the world in the state observed.
+  bool present(std::size_t i) const { return !lives_ || presence_.in(i); }
+  // Dynamic bodies that took part in the step observed.
+  std::size_t dynamic_stepped() const {
+    return lives_ ? presence_.dynamic_stepped() : dynamic_.size();
+  }
+  // Escapes of the bodies that left in the step from `before`, judged where they were last.
+  void judge_leavers(const BodyState& before);
+  // Whether body i at p is farther from its start than the scene can send it.
+  bool escaped(std::size_t i, Vec2d p) const;
   static bool keeps_moving(std::size_t i, const BodyState& s) {
     return s.velocity[i].x != 0.0 || s.velocity[i].y != 0.0 || !std::isfinite(s.position[i].x) ||
            !std::isfinite(s.position[i].y);
@@ -146,6 +172,9 @@ class MetricsRecorder {
 
   MetricSelection sel_;
   const Scene& scene_;
+  Presence presence_;
+  bool lives_ = false;                 // some body comes or goes (presence_.any())
+  std::vector<std::size_t> left_out_;  // bodies that escaped before they left, ascending
   double dt_;
   MotionBounds bounds_;
   std::vector<std::size_t> dynamic_;
@@ -212,9 +241,10 @@ struct PositionError {
   double max = 0.0;
   double rms = 0.0;
 };
-// |x_i - x_i^ref| over the dynamic bodies (differences below resolution count as 0).
+// |x_i - x_i^ref| over the dynamic bodies (differences below resolution count as 0); with
+// `state` >= 0, over those in the world in that state (SceneBody::alive) only.
 PositionError position_error(const Scene& scene, std::span<const Vec2d> run,
-                             std::span<const Vec2d> reference);
+                             std::span<const Vec2d> reference, int state = -1);
 
 // The scene's initial state: centres and initial velocities, angles 0.
 BodyState initial_state(const Scene& scene);

@@ -48,13 +48,18 @@ double float_resolution(Vec2d p) {
 void MetricsRecorder::observe(const BodyState& before, const BodyState& after, int step,
                               bool per_body, bool depth,
                               const std::vector<std::uint32_t>* changed) {
+  if (lives_) {
+    presence_.at(step);
+    if (sel_.stability) judge_leavers(before);
+  }
   const bool displacement = sel_.displacement || per_body;
   const bool overlaps = sel_.penetration || per_body || depth || sel_.stability;
   // Reusing the last step's overlaps needs them measured on the state `before` holds, and a
   // tolerance that stays what it was: not the run's last step, where it drops to the scene's own.
   const bool follows = step == last_step_ + 1 && (!overlaps || overlaps_step_ == last_step_);
   const bool few = !every_body_ && follows && step < scene_.steps &&
-                   (changed ? find_moved(before, after, *changed) : find_moved(before, after));
+                   (changed ? find_moved(before, after, *changed) : find_moved(before, after)) &&
+                   (!lives_ || add_changes(after.position.size()));
   if (few) {
     if (moved_.empty()) {
       observe_still(after, step, displacement, overlaps);
@@ -63,7 +68,7 @@ void MetricsRecorder::observe(const BodyState& before, const BodyState& after, i
     }
     std::size_t kept = 0;
     for (const std::uint32_t i : moved_) {
-      if (keeps_moving(i, after)) moved_[kept++] = i;
+      if (keeps_moving(i, after) && present(i)) moved_[kept++] = i;
     }
     moved_.resize(kept);
     still_.swap(moved_);
@@ -71,7 +76,7 @@ void MetricsRecorder::observe(const BodyState& before, const BodyState& after, i
     observe_all(before, after, step, displacement, overlaps);
     still_.clear();
     for (std::size_t i = 0; i < after.velocity.size(); ++i) {
-      if (keeps_moving(i, after)) still_.push_back(static_cast<std::uint32_t>(i));
+      if (keeps_moving(i, after) && present(i)) still_.push_back(static_cast<std::uint32_t>(i));
     }
   }
   last_step_ = step;
@@ -118,6 +123,16 @@ bool MetricsRecorder::find_moved(const BodyState& before, const BodyState& after
   return true;
 }
 
+bool MetricsRecorder::add_changes(std::size_t bodies) {
+  const std::span<const std::uint32_t> changes = presence_.changed();
+  if (changes.empty()) return true;
+  candidates_.clear();
+  std::set_union(moved_.begin(), moved_.end(), changes.begin(), changes.end(),
+                 std::back_inserter(candidates_));
+  moved_.swap(candidates_);
+  return moved_.size() <= bodies / 2;
+}
+
 double MetricsRecorder::add_displacement(const BodyState& before, const BodyState& after,
                                          std::size_t i) {
   const double d = energy_free_displacement(before, after, i, dt_);
@@ -141,9 +156,14 @@ void MetricsRecorder::clear_displacements() {
 void MetricsRecorder::observe_all(const BodyState& before, const BodyState& after, int step,
                                   bool displacement, bool overlaps) {
   if (displacement) {
-    for (const std::size_t i : dynamic_)
-      add_displacement(before, after, i);
-    body_steps_ += dynamic_.size();
+    for (const std::size_t i : dynamic_) {
+      if (stepped(i)) {
+        add_displacement(before, after, i);
+      } else {
+        step_efd_[i] = 0.0;  // out of the world for the step: no displacement
+      }
+    }
+    body_steps_ += dynamic_stepped();
     efd_dense_ = true;
     efd_written_.clear();
   }
@@ -164,6 +184,7 @@ void MetricsRecorder::observe_all(const BodyState& before, const BodyState& afte
   if (sel_.stability) {
     recovering_.clear();
     for (const std::size_t i : dynamic_) {
+      if (!stepped(i)) continue;
       update_slack(before, after, i, step);
       if (slack_[i] < bounds_.allowance[i]) recovering_.push_back(i);
     }
@@ -180,9 +201,10 @@ void MetricsRecorder::observe_some(const BodyState& before, const BodyState& aft
     clear_displacements();
     // Scene order, as a full pass sums them; a body that did not move adds exactly 0.
     for (const std::uint32_t i : moved_) {
-      if (scan().dynamic(i) && add_displacement(before, after, i) != 0.0) efd_written_.push_back(i);
+      if (scan().dynamic(i) && stepped(i) && add_displacement(before, after, i) != 0.0)
+        efd_written_.push_back(i);
     }
-    body_steps_ += dynamic_.size();
+    body_steps_ += dynamic_stepped();
   }
   if (overlaps) {
     for (const std::uint32_t i : moved_)
@@ -215,6 +237,7 @@ void MetricsRecorder::observe_some(const BodyState& before, const BodyState& aft
     merged_.insert(merged_.end(), r, recovering_.end());
     recovering_.clear();
     for (const std::size_t i : merged_) {
+      if (!stepped(i)) continue;  // entered in the step, or left: no move, and no bucket now
       update_slack(before, after, i, step);
       if (slack_[i] < bounds_.allowance[i]) recovering_.push_back(i);
     }
@@ -237,7 +260,7 @@ void MetricsRecorder::observe_still(const BodyState& after, int step, bool displ
                                     bool overlaps) {
   if (displacement) {
     clear_displacements();
-    body_steps_ += dynamic_.size();
+    body_steps_ += dynamic_stepped();
   }
   if (overlaps) {
     deepest_.step = step;
@@ -255,7 +278,11 @@ void MetricsRecorder::observe_still(const BodyState& after, int step, bool displ
 
 void MetricsRecorder::visit(const BodyState& before, const BodyState& after, std::size_t i,
                             std::size_t j, int step) {
-  if (sel_.stability) tunnels_.check(before, after, i, j, step);
+  // A body out of the world overlaps nothing; one that entered in the step passed through
+  // nothing in it (it was not in the state before).
+  if (!present(i) || !present(j)) return;
+  if (lives_ && !meet(scene_.bodies[i], scene_.bodies[j], step)) return;
+  if (sel_.stability && stepped(i) && stepped(j)) tunnels_.check(before, after, i, j, step);
   const double d = scan().depth(after, i, j);
   const Vec2d hi = scan().half(i), hj = scan().half(j);
   const double scale = std::max(

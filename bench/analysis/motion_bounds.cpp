@@ -57,6 +57,7 @@ Floor find_floor(const Scene& scene, double sideways, double lift, double sunk) 
   const double rounding = 1e-9 * (1.0 + std::abs(bottom));
   for (const SceneBody& f : scene.bodies) {
     if (f.kind != BodyKind::kStatic) continue;
+    if (f.from_step > 0 || f.to_step < scene.steps) continue;  // not there the whole run
     const double top = depth(f.center) - half_depth(f);
     if (top < bottom - sunk - rounding || top >= ground) continue;
     if (across(f.center) - half_across(f) > lo - sideways ||
@@ -126,6 +127,10 @@ MotionBounds motion_bounds(const Scene& scene) {
     scan.build(start, start);
     std::vector<std::pair<std::size_t, std::size_t>> touching;
     scan.for_each_pair([&](std::size_t i, std::size_t j) {
+      // Bodies that come and go start together only if they enter together: a body entering
+      // later meets the others wherever they are then, and a body leaving early never meets one
+      // entering after it.
+      if (scene.bodies[i].from_step != scene.bodies[j].from_step) return;
       touching.emplace_back(i, j);
       const double d = scan.depth(start, i, j);
       if (d <= 0.0) return;

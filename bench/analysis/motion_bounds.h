@@ -16,7 +16,10 @@
 // Overlaps. Bodies that start overlapping are pushed apart, and a push moves a body without
 // speed: each body may travel beyond its speed bound by the overlaps of the cluster it starts in
 // (bodies overlapping or touching at the start), or of any cluster that reaches it when grown by
-// its overlaps, plus 5% of the scene's smallest box.
+// its overlaps, plus 5% of the scene's smallest box. Where bodies come and go
+// (SceneBody::from_step) the overlaps a scene starts with are those of bodies that enter together,
+// at the same step, as the scene places them; a floor is a static box in the world for the whole
+// run.
 #pragma once
 
 #include "scene.h"

@@ -23,7 +23,7 @@ PairCache::Box PairCache::fatten(std::size_t i, const BodyState& before,
   // stays filed for a few steps. The distance moved keeps a steady mover filed for about two
   // steps more than that.
   double gx = 0.25 / kCellScale * scan_.cell(), gy = gx;
-  if (live_[i]) {
+  if (live_[i] && (!presence_ || presence_->stepped(i))) {
     gx += 2.0 * std::abs(after.position[i].x - before.position[i].x);
     gy += 2.0 * std::abs(after.position[i].y - before.position[i].y);
   }

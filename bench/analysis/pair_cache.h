@@ -18,11 +18,17 @@
 // Where only some bodies moved, the pairs with a moved body are read from each moved body's own
 // list, and only the moved bodies are measured: a body at rest is still inside its fat box, since
 // it was when it last moved.
+//
+// Following a Presence (bodies that come and go), a body out of the world after a step is neither
+// filed nor reported, as a body whose position is not finite, and one that entered in the step is
+// measured at rest where it entered: what the state before held for it was no position of its.
+// Bodies that enter or leave must be among the moved bodies of their step.
 #pragma once
 
 #include "cell_table.h"
 #include "engine.h"
 #include "pair_scan.h"
+#include "presence.h"
 #include "scene.h"
 
 #include <cmath>
@@ -48,6 +54,9 @@ class PairCache {
   void for_each_pair_of(const BodyState& before, const BodyState& after,
                         std::span<const std::uint32_t> moved, std::span<const std::uint8_t> active,
                         Fn&& fn);
+  // Reports only the bodies `presence` has in the world (its state being that of each step's
+  // `after`); it must outlive the cache.
+  void follow(const Presence& presence) { presence_ = &presence; }
   // Forget the filing: the bodies moved without being measured here.
   void invalidate() { filed_ = false; }
 
@@ -67,10 +76,16 @@ class PairCache {
   // Body i's box over the step into box_ (swept; at rest where it is after the step when it came
   // from a non-finite position), and whether it fits the fat box it was filed with.
   bool measure(std::size_t i, const BodyState& before, const BodyState& after) {
-    live_[i] = scan_.swept(i, before, after, box_[i]);
     const Vec2d p = after.position[i];
-    placed_[i] = std::isfinite(p.x) && std::isfinite(p.y);
-    if (!live_[i] && placed_[i]) box_[i] = scan_.at_rest(i, after);
+    if (presence_ && !presence_->stepped(i)) {  // entered in the step, or out of the world
+      placed_[i] = presence_->in(i) && std::isfinite(p.x) && std::isfinite(p.y);
+      live_[i] = placed_[i];
+      if (placed_[i]) box_[i] = scan_.at_rest(i, after);
+    } else {
+      live_[i] = scan_.swept(i, before, after, box_[i]);
+      placed_[i] = std::isfinite(p.x) && std::isfinite(p.y);
+      if (!live_[i] && placed_[i]) box_[i] = scan_.at_rest(i, after);
+    }
     const Box& s = box_[i];
     const Box& f = fat_[i];
     return placed_[i] == filed_placed_[i] &&
@@ -112,6 +127,7 @@ class PairCache {
   std::vector<std::uint32_t> refit_;     // bodies that left their fat box in this step
   std::vector<Pair> loose_pairs_;
   bool filed_ = false;
+  const Presence* presence_ = nullptr;
   std::uint64_t filings_ = 0, refits_ = 0;
 };
 

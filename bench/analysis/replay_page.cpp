@@ -89,6 +89,14 @@ ordered_json scene_json(const Scene& s) {
                     {"centers", std::move(centers)},
                     {"expect", std::move(expect)}};
   if (s.penetration_tolerance) j["penetration_tolerance"] = *s.penetration_tolerance;
+  if (s.has_lifetimes()) {  // the states each body is in (to: null for the last)
+    ordered_json from = ordered_json::array(), to = ordered_json::array();
+    for (const SceneBody& b : s.bodies) {
+      from.push_back(b.from_step);
+      to.push_back(b.to_step < s.steps ? ordered_json(b.to_step) : ordered_json(nullptr));
+    }
+    j["lives"] = {{"from", std::move(from)}, {"to", std::move(to)}};
+  }
   return j;
 }
 
@@ -121,7 +129,7 @@ ordered_json engine_json(const Scene& s, const EngineRun& run, const ReplayTrack
   ordered_json bodies = ordered_json::array(), xy = ordered_json::array();
   for (std::size_t i = 0; i < s.bodies.size() && i < run.final_positions.size(); ++i) {
     const Vec2d p = run.final_positions[i], c = s.bodies[i].center;
-    if (std::memcmp(&p, &c, sizeof p) == 0) continue;
+    if (std::memcmp(&p, &c, sizeof p) == 0 || !run.present_at_end(s, i)) continue;
     bodies.push_back(i);
     xy.push_back(json_number(p.x));
     xy.push_back(json_number(p.y));

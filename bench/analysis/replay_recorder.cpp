@@ -42,12 +42,20 @@ void ReplayRecorder::begin(const EngineSpec& spec, std::span<const CounterDef> c
     t.counted.push_back({counters[c].name, counters[c].help, {}});
   }
   if (is_reference) reference_states_ = {centres(scene_)};
+  shown_ = centres(scene_);
   tracks_.push_back(std::move(t));
 }
 
 void ReplayRecorder::observe(const StepView& v) {
   ReplayTrack& t = tracks_.back();
-  const std::vector<Vec2d>& position = v.state->position;
+  // A body out of the world keeps the centre last stored for it (its own as built, before it
+  // enters), so that the stream stores nothing for it; the page does not draw it then.
+  if (!v.present.empty()) {
+    for (std::size_t i = 0; i < shown_.size(); ++i) {
+      if (v.present[i]) shown_[i] = v.state->position[i];
+    }
+  }
+  const std::vector<Vec2d>& position = v.present.empty() ? v.state->position : shown_;
   t.positions.add(position);
   double efd = 0.0;
   for (std::size_t i = 0; i < scene_.bodies.size(); ++i) {
@@ -68,7 +76,7 @@ void ReplayRecorder::observe(const StepView& v) {
       const std::size_t k = static_cast<std::size_t>(v.step);
       // A reference that stopped early leaves the later states without a comparison.
       const PositionError e = k < reference_states_.size()
-                                  ? position_error(scene_, position, reference_states_[k])
+                                  ? position_error(scene_, position, reference_states_[k], v.step)
                                   : PositionError{std::numeric_limits<double>::quiet_NaN(),
                                                   std::numeric_limits<double>::quiet_NaN()};
       t.error_max.push_back(e.max);

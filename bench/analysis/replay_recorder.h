@@ -65,6 +65,7 @@ class ReplayRecorder final : public StepObserver {
   std::vector<std::size_t> counted_;  // indices of the current engine's kSum counters
   std::vector<ReplayTrack> tracks_;
   std::vector<std::vector<Vec2d>> reference_states_;  // per state, while the reference records
+  std::vector<Vec2d> shown_;  // per body: the centre stored for it last (bodies that come and go)
 };
 
 }  // namespace chainbench

@@ -153,7 +153,8 @@ void compare(RunReport& report) {
     Comparison c;
     c.engine = run.engine;
     c.reference = ref->engine;
-    c.error = position_error(*report.scene, run.final_positions, ref->final_positions);
+    c.error =
+        position_error(*report.scene, run.final_positions, ref->final_positions, run.final_state);
     c.speedup = run.timing.median_ms > 0.0 ? ref->timing.median_ms / run.timing.median_ms : 0.0;
     report.comparison.push_back(c);
   }
@@ -359,6 +360,15 @@ ordered_json run_json(const RunReport& r) {
   j["scene"]["kinds"] = std::move(kinds);
   j["scene"]["names"] = std::move(names);
   j["scene"]["centers"] = std::move(centers);  // as built
+  if (s.has_lifetimes()) {  // the states each body is in: from_step..to_step (null: the last)
+    ordered_json from = ordered_json::array(), to = ordered_json::array();
+    for (const SceneBody& b : s.bodies) {
+      from.push_back(b.from_step);
+      to.push_back(b.to_step < s.steps ? ordered_json(b.to_step) : ordered_json(nullptr));
+    }
+    j["scene"]["from_step"] = std::move(from);
+    j["scene"]["to_step"] = std::move(to);
+  }
   if (!s.expect.empty()) {
     j["scene"]["expect"] = ordered_json::array();
     for (const Expectation& e : s.expect)
@@ -380,14 +390,20 @@ ordered_json run_json(const RunReport& r) {
       e["verdict"] = verdict_json(*run.verdict);
       return e;
     }
+    // A body out of the world at the end has no position: null.
     ordered_json positions = ordered_json::array();
-    for (const Vec2d& p : run.final_positions)
-      positions.push_back({json_number(p.x), json_number(p.y)});
+    for (std::size_t i = 0; i < run.final_positions.size(); ++i) {
+      const Vec2d p = run.final_positions[i];
+      positions.push_back(run.present_at_end(s, i)
+                              ? ordered_json{json_number(p.x), json_number(p.y)}
+                              : ordered_json(nullptr));
+    }
     e["final_positions"] = std::move(positions);
     if (s.rotation) {
       ordered_json angles = ordered_json::array();
-      for (const double a : run.final_angles)
-        angles.push_back(json_number(a));
+      for (std::size_t i = 0; i < run.final_angles.size(); ++i)
+        angles.push_back(run.present_at_end(s, i) ? json_number(run.final_angles[i])
+                                                  : ordered_json(nullptr));
       e["final_angles"] = std::move(angles);
     }
     e["ms_per_step"] = {{"median", run.timing.median_ms}, {"mean", run.timing.mean_ms},

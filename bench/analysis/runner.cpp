@@ -71,16 +71,10 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
 
   const std::size_t n = scene.bodies.size();
   const Lifetimes lives(scene);
-  if (lives.any() && !options.observers.empty()) {
-    throw InputError("scene " + scene.name +
-                     ": its bodies come and go (from_step, to_step), which traces and replay "
-                     "pages do not follow yet");
-  }
-  // Metrics and traces look at every step; expectations only at the states they name.
+  // Metrics and traces look at every step; expectations only at the states they name. Each sees
+  // a body only while it is in the world (presence.h).
   const bool observed = !options.observers.empty();
-  // The step metrics judge every body in every state: not yet measured where bodies come and go
-  // (docs/scene-format.md §2); expectations still are.
-  const MetricSelection metrics = lives.any() ? MetricSelection::none() : options.metrics;
+  const MetricSelection metrics = options.metrics;
   const bool every_step = metrics.any() || observed;
   ExpectationCheck expect(scene);
   std::optional<MetricsRecorder> recorder;
@@ -153,6 +147,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
           view.state = &after;
           view.displacement = recorder->step_displacement();
           view.penetration = recorder->step_penetration();
+          if (lives.any()) view.present = recorder->presence().mask();
           view.counters = engine->counters();
           view.events = engine->events();
           view.degraded = degraded;
@@ -175,6 +170,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
   engine->read_state(last);
   run.final_positions = last.position;
   run.final_angles = last.angle;
+  run.final_state = steps_taken;
   run.hash = position_hash(run.final_positions);
   if (samples.empty() && steps_taken > 0) samples.push_back(first_ms);
   run.timing = summarize_steps(std::move(samples), setup_ms);

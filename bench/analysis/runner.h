@@ -40,8 +40,11 @@ struct Timing {
 struct EngineRun {
   EngineSpec spec;
   std::string engine;  // spec.str(), the canonical spec
+  // Every body's centre and angle in the last state, final_state (the steps taken); a body out of
+  // the world then (SceneBody::alive) holds zeros, which no output shows (present_at_end).
   std::vector<Vec2d> final_positions;
   std::vector<double> final_angles;
+  int final_state = 0;
   Timing timing;
   Metrics metrics;
   bool metrics_computed = false;
@@ -60,6 +63,10 @@ struct EngineRun {
   // Finite, no body escaped, no blow-up, no body through another, and no step cut short; empty
   // when not measured.
   std::optional<bool> stable() const;
+  // Whether body i of `scene` (the run's) is in the world in the run's last state.
+  bool present_at_end(const Scene& scene, std::size_t i) const {
+    return scene.bodies[i].alive(final_state);
+  }
   // The run's value of the counter `name`, or empty when its engine has no such counter.
   std::optional<double> counter(std::string_view name) const;
   const std::vector<CounterDef>& counter_defs() const { return defs; }

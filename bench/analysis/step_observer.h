@@ -6,6 +6,7 @@
 #include "engine.h"
 #include "engine_spec.h"
 
+#include <cstdint>
 #include <span>
 
 namespace chainbench {
@@ -16,10 +17,13 @@ struct StepView {
   const BodyState* state = nullptr;
   std::span<const double> displacement;  // per body: energy-free displacement of this step, m
   std::span<const double> penetration;   // per body: its deepest overlap after this step, m
-  std::span<const double> counters;      // the engine's counters of this step (counter_defs order)
-  std::span<const EngineEvent> events;   // the bodies the engine's events of this step concern
-  bool degraded = false;                 // the engine cut this step short
-  double ms = 0.0;                       // the step's wall time on the steady clock, ms
+  // Per body: 1 when it is in the world in this state (SceneBody::alive); empty when every body
+  // is in every state. A body out of the world has no state: its entries in `state` are stale.
+  std::span<const std::uint8_t> present;
+  std::span<const double> counters;     // the engine's counters of this step (counter_defs order)
+  std::span<const EngineEvent> events;  // the bodies the engine's events of this step concern
+  bool degraded = false;                // the engine cut this step short
+  double ms = 0.0;                      // the step's wall time on the steady clock, ms
 };
 
 class StepObserver {

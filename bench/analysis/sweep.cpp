@@ -77,9 +77,10 @@ SweepResult sweep(const Scene& scene, const std::vector<EngineSpec>& grid,
     if (point.run.failure || (!use_expect && result.reference_run->failure)) {
       point.error = {HUGE_VAL, HUGE_VAL};  // nothing to measure (a crash or a hang)
     } else {
-      point.error = use_expect ? expectation_error(scene, *point.run.expect)
-                               : position_error(scene, point.run.final_positions,
-                                                result.reference_run->final_positions);
+      point.error =
+          use_expect ? expectation_error(scene, *point.run.expect)
+                     : position_error(scene, point.run.final_positions,
+                                      result.reference_run->final_positions, point.run.final_state);
     }
     result.points.push_back(std::move(point));
     ++done;

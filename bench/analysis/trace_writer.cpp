@@ -41,6 +41,10 @@ TraceWriter::TraceWriter(std::ostream& out, const Scene& scene) : out_(out) {
   append_number(line_, scene.dt);
   out_ << "# dt " << line_ << " s (time = step * dt)\n"
        << "# steps " << scene.steps << " (rows after an engine's last row repeat it)\n";
+  if (scene.has_lifetimes()) {
+    out_ << "# bodies come and go: a body has rows only while it is in the world, the first at the "
+            "state it enters in; a row with its values empty says it left in the step before\n";
+  }
   for (const SceneBody& b : scene.bodies)
     names_.push_back(csv_field(b.name));
 }
@@ -49,21 +53,33 @@ void TraceWriter::begin(const EngineSpec& spec, std::span<const CounterDef>) {
   label_ = csv_field(spec.label());
   out_ << "# engine " << spec.label() << " = " << spec.str() << '\n';
   last_.assign(names_.size(), Row{});
-  first_ = true;
+  shown_.assign(names_.size(), 0);
 }
 
 void TraceWriter::observe(const StepView& v) {
   const BodyState& s = *v.state;
-  for (std::size_t i = 0; i < s.position.size(); ++i) {
-    const Row row = {s.position[i].x, s.position[i].y,   s.velocity[i].x, s.velocity[i].y,
-                     s.angle[i],      v.displacement[i], v.penetration[i]};
-    if (!first_ && same_bits(row, last_[i])) continue;
-    last_[i] = row;
+  auto start = [&](std::size_t i) {
     line_ = label_;
     line_ += ',';
     line_ += std::to_string(v.step);
     line_ += ',';
     line_ += names_[i];
+  };
+  for (std::size_t i = 0; i < s.position.size(); ++i) {
+    if (!v.present.empty() && !v.present[i]) {  // out of the world: its entries are no state
+      if (!shown_[i]) continue;
+      shown_[i] = 0;
+      start(i);
+      line_ += ",,,,,,,\n";  // it left in the step before this state
+      out_ << line_;
+      continue;
+    }
+    const Row row = {s.position[i].x, s.position[i].y,   s.velocity[i].x, s.velocity[i].y,
+                     s.angle[i],      v.displacement[i], v.penetration[i]};
+    if (shown_[i] && same_bits(row, last_[i])) continue;
+    last_[i] = row;
+    shown_[i] = 1;
+    start(i);
     for (const double value : row) {
       line_ += ',';
       append_number(line_, value);
@@ -71,7 +87,6 @@ void TraceWriter::observe(const StepView& v) {
     line_ += '\n';
     out_ << line_;
   }
-  first_ = false;
 }
 
 }  // namespace chainbench

@@ -5,13 +5,17 @@
 // step * dt) and each engine's full spec once. A body's row is written at step 1 and then only
 // when some value in it changed: a missing row repeats the body's previous one, so bodies at rest
 // and static bodies cost one row each. Numbers are the shortest text that reads back to the same
-// double, so nothing is rounded.
+// double, so nothing is rounded. Where bodies come and go (StepView::present), a body has rows
+// only while it is in the world: the first at the state it enters in (step 1 for a body there
+// from the start), and once it has left, one row with its seven values empty, at the first state
+// it is not in.
 #pragma once
 
 #include "scene.h"
 #include "step_observer.h"
 
 #include <array>
+#include <cstdint>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -29,8 +33,8 @@ class TraceWriter final : public StepObserver {
   std::ostream& out_;
   std::vector<std::string> names_;  // quoted where CSV needs it
   std::string label_;
-  std::vector<Row> last_;  // per body: its last written row
-  bool first_ = true;      // no row of this engine written yet
+  std::vector<Row> last_;            // per body: its last written row
+  std::vector<std::uint8_t> shown_;  // per body: its last row is a state (not none, not a leave)
   std::string line_;
 };
 

@@ -1,6 +1,8 @@
 #include "pair_judging.h"
 
+#include "lifetimes.h"
 #include "metrics.h"
+#include "presence.h"
 #include "registry.h"
 
 #include <utility>
@@ -10,24 +12,31 @@ namespace chainbench {
 PairJudging::PairJudging(const Scene& scene, const EngineSpec& spec, int warmup, int window)
     : scan_(scene), tunnels_(scene), first_step_(warmup + 1) {
   const auto engine = make_engine(spec, scene);
+  const Lifetimes lives(scene);
+  Presence presence(scene);  // bodies that come and go: pairs of two bodies in the step only
   int step = 0;
-  for (; step < warmup; ++step)
+  for (; step < warmup; ++step) {
+    lives.apply(*engine, step);
     engine->step(step);
+  }
   BodyState before = initial_state(scene), after = before;
   engine->read_state(after);
   pairs_.resize(static_cast<std::size_t>(window));
   std::vector<std::uint8_t> moved(scene.bodies.size());
   for (auto& pairs : pairs_) {
     std::swap(before, after);
+    lives.leave(*engine, step);
     engine->step(step++);
+    lives.enter(*engine, step);
     engine->read_state(after);
+    presence.at(step);
     for (std::size_t i = 0; i < moved.size(); ++i) {
       moved[i] = after.position[i].x != before.position[i].x ||
                  after.position[i].y != before.position[i].y;
     }
     scan_.build(before, after);
     scan_.for_each_pair([&](std::size_t i, std::size_t j) {
-      if (moved[i] || moved[j])
+      if ((moved[i] || moved[j]) && presence.stepped(i) && presence.stepped(j))
         pairs.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j));
     });
   }

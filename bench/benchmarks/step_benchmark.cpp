@@ -15,6 +15,7 @@
 #include "lifetimes.h"
 #include "metrics.h"
 #include "pair_judging.h"
+#include "presence.h"
 #include "registry.h"
 #include "scene_library.h"
 #include "state_feed.h"
@@ -28,6 +29,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -76,12 +78,18 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
   const auto engine = make_engine(spec, scene);
   // Bodies that come and go (spawn_rain) are added and removed in the timed step, as in `run`.
   const Lifetimes lives(scene);
+  // The bodies in the world: those that take part in a step (in the states before and after it).
+  // Counted outside the timing.
+  Presence presence(scene);
   int step = 0;
   for (; step < family.warmup; ++step) {
     lives.apply(*engine, step);
     engine->step(step);
   }
   const double held = heap_in_use() - heap_before;
+  presence.at(step);
+  const auto built = static_cast<double>(presence.count());  // in the world after the warm-up
+  double body_steps = 0.0;
   CounterTotals counted(*engine);
   double degraded = 0.0;
   std::vector<double> step_ms;
@@ -94,18 +102,22 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
     const std::chrono::duration<double> took = Clock::now() - t0;
     state.SetIterationTime(took.count());
     step_ms.push_back(1e3 * took.count());
+    presence.at(step);
+    body_steps += static_cast<double>(presence.stepped_count());  // in the world for the step
     degraded += engine->degraded();
     // A moving scene: count every timed step, outside the time measured.
     if (family.window > 0) counted.add(*engine);
   }
-  const auto bodies = static_cast<double>(scene.bodies.size());
   const auto iterations = static_cast<double>(state.iterations());
+  // Bodies in the world, on average over the timed steps: every body of the scene, except where
+  // bodies come and go (spawn_rain), whose scene lists every body that ever enters.
+  const double bodies = iterations > 0.0 ? body_steps / iterations : built;
   state.counters["bodies"] = bodies;
-  // Seconds per body per step (shown as ns); in JSON, seconds.
-  state.counters["per_body"] = benchmark::Counter(
-      bodies * iterations, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  // Seconds per body in the world per step (shown as ns); in JSON, seconds.
+  state.counters["per_body"] =
+      benchmark::Counter(body_steps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["degraded"] = degraded / iterations;
-  state.counters["bytes_per_body"] = held / bodies;
+  state.counters["bytes_per_body"] = held / built;
   // The median step and the slowest, ms: a mean hides the frame that misses a game's budget.
   if (!step_ms.empty()) {
     const auto middle = step_ms.begin() + static_cast<std::ptrdiff_t>(step_ms.size() / 2);
@@ -123,7 +135,7 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
     }
   }
   counted.report(state);
-  state.SetComplexityN(static_cast<benchmark::IterationCount>(bodies));
+  state.SetComplexityN(static_cast<benchmark::IterationCount>(std::llround(bodies)));
 }
 
 // What the harness adds, on every family and size the engine under test is benchmarked at: the
@@ -139,14 +151,19 @@ void pair_judging_benchmark(benchmark::State& state, const Family& family, const
                             const EngineSpec& spec) {
   PairJudging judging(scene, spec, family.warmup, family.window);
   const auto engine = make_engine(spec, scene);
+  const Lifetimes lives(scene);
   StateFeed feed(*engine, scene.bodies.size());
   int step = 0;
-  for (; step < family.warmup; ++step)
+  for (; step < family.warmup; ++step) {
+    lives.apply(*engine, step);
     engine->step(step);
+  }
   feed.read();
   int k = 0;
   for (auto _ : state) {
+    lives.leave(*engine, step);
     engine->step(step++);
+    lives.enter(*engine, step);
     feed.read();
     benchmark::DoNotOptimize(judging.judge(k++, feed.before(), feed.after()));
   }
@@ -166,17 +183,22 @@ void harness_benchmark(benchmark::State& state, const Family& family, int size,
   std::optional<MetricsRecorder> recorder;
   if (metrics) recorder.emplace(scene, MetricSelection{});
   StateFeed feed(*engine, scene.bodies.size());
+  const Lifetimes lives(scene);  // bodies that come and go: added and removed as in `run`
   int step = 0;
   if (metrics) feed.read();  // bare, it steps exactly as step_benchmark does
   for (; step < family.warmup; ++step) {
+    lives.leave(*engine, step);
     engine->step(step);
+    lives.enter(*engine, step + 1);
     if (metrics) {  // the recorder follows the run from its start, as in `run`
       feed.read();
       recorder->observe(feed.before(), feed.after(), step + 1, false, false, feed.changed());
     }
   }
   for (auto _ : state) {
+    lives.leave(*engine, step);
     engine->step(step++);
+    lives.enter(*engine, step);
     if (metrics) {
       feed.read();
       recorder->observe(feed.before(), feed.after(), step, false, false, feed.changed());
@@ -227,8 +249,6 @@ void register_harness(const EngineSpec& spec, std::size_t max_bodies) {
       if (family_bodies(family, size) > max_bodies) continue;
       const Scene sample = make_scene(family.scene, family_sets(family, size));
       if (!missing_capability(spec, sample).empty()) continue;
-      // The metrics do not follow bodies that come and go (runner.cpp): nothing to time.
-      if (Lifetimes(sample).any()) continue;
       const std::string name = "harness/" + family.name + "/" + std::to_string(size);
       auto* b = benchmark::RegisterBenchmark(
           name.c_str(),

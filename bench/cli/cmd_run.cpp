@@ -152,11 +152,6 @@ int run_scene(const RunArgs& a) {
   if (!note.empty()) std::cout << "\nnote: " << note << '\n';
   for (const std::string& left_out : choice.notes)
     std::cout << "note: " << left_out << '\n';
-  if (scene.has_lifetimes() && parse_metric_selection(a.metrics).any()) {
-    std::cout << "note: bodies come and go in this scene: its step metrics, and the verdicts they "
-                 "give, are not measured yet; the expect column judges it (docs/scene-format.md, "
-                 "section 2)\n";
-  }
   if (json_out) json_out->stream() << run_json(report).dump(2) << '\n';
   if (csv_out) write_run_csv(csv_out->stream(), report);
   ReplayPageSummary written;

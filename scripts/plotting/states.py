@@ -27,7 +27,9 @@ def load_run(path):
         pos, angles = r["final_positions"], r.get("final_angles")
         if len(pos) != n or (angles is not None and len(angles) != n):
             raise InputError(f"{path}: {r['engine']}: not one final position (angle) per body")
-        out.append((str(r.get("label") or r["engine"]), is_ref, [(number(x), number(y)) for x, y in pos],
+        # null: a body out of the world at the end (its scene's from_step/to_step), not drawn
+        out.append((str(r.get("label") or r["engine"]), is_ref,
+                    [(None, None) if p is None else (number(p[0]), number(p[1])) for p in pos],
                     None if angles is None else [number(a) for a in angles]))
     if not out:
         raise InputError(f"{path}: no runs")

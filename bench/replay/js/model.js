@@ -21,6 +21,11 @@ class ReplayModel {
     this.half = Float64Array.from(scene.half_extents);
     this.centers = Float64Array.from(scene.centers);
     this.byName = new Map(this.names.map((name, i) => [name, i]));
+    // Bodies that come and go: body i is in the world in states from[i]..to[i] (to null: to the
+    // end). Absent from the data when every body is there throughout.
+    const lives = scene.lives;
+    this.from = lives ? Int32Array.from(lives.from) : null;
+    this.to = lives ? Float64Array.from(lives.to, (t) => (t === null ? Infinity : t)) : null;
     this.engines = data.engines.map((e) => this.loadEngine(e));
     // Bodies no engine ever moves: stored once, as built.
     this.resting = 0;
@@ -65,8 +70,16 @@ class ReplayModel {
     return [x0 + dx * this.quantum, y0 + track.offsets[at + 1] * this.quantum];
   }
 
-  // The centre the page draws: exact as built and after the last step, stored in between.
+  // Whether a body is in the world at a step (drawn, hovered, listed only then).
+  alive(body, step) {
+    const k = Math.max(0, Math.min(step, this.steps));
+    return !this.from || (this.from[body] <= k && k <= this.to[body]);
+  }
+
+  // The centre the page draws: exact as built and after the last step, stored in between; null
+  // while the body is lost or not in the world.
   position(engine, body, step) {
+    if (!this.alive(body, step)) return null;
     if (step <= 0) return [this.centers[2 * body], this.centers[2 * body + 1]];
     if (step >= this.steps) {
       const final = this.engines[engine].final;

@@ -90,7 +90,8 @@ function bodyTooltip(model, shown, body, step) {
         ? formatNumber(Math.hypot(p[0] - basePosition[0], p[1] - basePosition[1]), 3) + " m" : "";
     rows.push("<tr><td><span class=\"swatch\" style=\"border-color:" + engineColour(k) +
               ";width:8px\"></span> " + escapeHtml(e.label) + "</td><td>" +
-              (p ? "(" + coordinate(p[0]) + ", " + coordinate(p[1]) + ")" : "lost") +
+              (p ? "(" + coordinate(p[0]) + ", " + coordinate(p[1]) + ")"
+                 : model.alive(body, step) ? "lost" : "not in the world") +
               "</td><td>" + distance + "</td></tr>");
   });
   const exact = model.isExact(step) ? "exact" : "stored to within " +

@@ -32,8 +32,9 @@ def load_trace(path):
 
     chainbench's trace (format 2) writes a body's row only when it changed: a missing row repeats
     the body's previous one, so every step counts every body seen so far, up to the "# steps"
-    line's count; time is step * dt from the "# dt" line. A file with a time column and a row per
-    body and step (format 1) reads as before."""
+    line's count; time is step * dt from the "# dt" line. Where bodies come and go, a row with
+    empty values says the body left: it adds nothing from then on. A file with a time column and
+    a row per body and step (format 1) reads as before."""
     needed = ("engine", "step", "body", "displacement", "penetration")
     per_engine, skipped, line, meta = {}, 0, 1, {}
 
@@ -81,6 +82,9 @@ def load_trace(path):
                     step = row_step
                 if itime is not None:
                     times[row_step] = float(row[itime])
+                if row[idisp] == "" and row[ipen] == "":  # the body left the world: it adds 0
+                    current[1].set(row[ibody], 0.0, 0.0)
+                    continue
                 disp, pen = float(row[idisp]), float(row[ipen])
                 if not (math.isfinite(disp) and math.isfinite(pen)):
                     skipped += 1

@@ -333,6 +333,25 @@ class PlotTest(Drawing, unittest.TestCase):
         self.assertAlmostEqual(displacement, 3 * 1e-6 / 2)
         self.assertEqual(len(per_engine["chain"]), 30)
 
+    def test_trace_with_bodies_that_come_and_go(self):
+        """A body enters at its first row and leaves at a row with empty values: it adds its
+        values only in between."""
+        lines = ["engine,step,body,x,y,vx,vy,angle,displacement,penetration",
+                 "# chainbench trace 2", "# dt 0.1 s", "# steps 8",
+                 "# bodies come and go: ...", "# engine chain = chain",
+                 "chain,1,a,0,0,0,0,0,0.5,0.01",
+                 "chain,3,b,0,0,0,0,0,0.25,0.2",
+                 "chain,6,b,,,,,,,"]
+        path = self.write("lives.csv", "\n".join(lines) + "\n")
+        per_engine, skipped = plotting("trace").load_trace(path)
+        self.assertEqual(skipped, 0)
+        steps = per_engine["chain"]
+        self.assertAlmostEqual(steps[2][1], 0.5)
+        self.assertAlmostEqual(steps[3][1], 0.75)
+        self.assertAlmostEqual(steps[5][2], 0.2)
+        self.assertAlmostEqual(steps[6][1], 0.5)
+        self.assertAlmostEqual(steps[8][2], 0.01)
+
     def test_labels(self):
         """Labels come from chainbench's outputs; the plots only split them."""
         plot = plotting("common")

@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -70,6 +71,19 @@ class CounterTotals {
   std::vector<double> totals_;
   int steps_ = 0;
 };
+
+// The bodies in the world over steps first .. first + steps - 1, on average: those that take
+// part in each (presence.h); every body of the scene unless bodies come and go.
+double mean_in_world(const Scene& scene, int first, std::int64_t steps) {
+  if (!scene.has_lifetimes() || steps <= 0) return static_cast<double>(scene.bodies.size());
+  Presence presence(scene);
+  double total = 0.0;
+  for (std::int64_t k = 0; k < steps; ++k) {
+    presence.at(first + static_cast<int>(k) + 1);
+    total += static_cast<double>(presence.stepped_count());
+  }
+  return total / static_cast<double>(steps);
+}
 
 void step_benchmark(benchmark::State& state, const Family& family, const EngineSpec& spec) {
   const Scene scene =
@@ -167,7 +181,7 @@ void pair_judging_benchmark(benchmark::State& state, const Family& family, const
     feed.read();
     benchmark::DoNotOptimize(judging.judge(k++, feed.before(), feed.after()));
   }
-  state.counters["bodies"] = static_cast<double>(scene.bodies.size());
+  state.counters["bodies"] = mean_in_world(scene, family.warmup, state.iterations());
   state.counters["pairs_per_step"] = judging.pairs_per_step();
 }
 
@@ -204,7 +218,8 @@ void harness_benchmark(benchmark::State& state, const Family& family, int size,
       recorder->observe(feed.before(), feed.after(), step, false, false, feed.changed());
     }
   }
-  const auto bodies = static_cast<double>(scene.bodies.size());
+  // Bodies in the world over the timed steps, as step_benchmark counts them.
+  const double bodies = mean_in_world(scene, family.warmup, state.iterations());
   state.counters["bodies"] = bodies;
   state.counters["per_body"] =
       benchmark::Counter(bodies * static_cast<double>(state.iterations()),

@@ -5,11 +5,15 @@
 #include "scene_library.h"
 #include "text_table.h"
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
 namespace chainbench {
 namespace {
+
+// The listings' tables fit a terminal this wide: help text wraps in its own column.
+constexpr std::size_t kListWidth = 100;
 
 std::string range(const SceneParam& p) {
   std::string out = "[";  // appended: "[" + a temporary makes GCC 12 warn of a false overlap
@@ -30,6 +34,7 @@ int list_scenes() {
     TextTable t({"    key", "default", "range", "meaning"});
     for (const SceneParam& p : all_params(r))
       t.add({"    " + p.key, fmt_exact(p.value), range(p), p.help});
+    t.wrap_text(kListWidth);
     t.print(std::cout);
   }
   return 0;
@@ -70,6 +75,21 @@ std::string values_text(const KeyDef& k) {
   return "[" + fmt_g(k.min, 9) + ", " + fmt_g(k.max, 9) + "]" + (k.integer ? " whole" : "");
 }
 
+// The spec's value of `k` where it is not the key's default in that spec, else empty: what the
+// spec changes stands out. A file by its name, as labels give it (the canonical line has its path).
+std::string given_text(const KeyDef& k, const EngineSpec& spec) {
+  const std::string& value = spec.get(k.name);
+  std::string def = k.default_value;
+  for (const auto& [key, set] : spec.settings) {
+    if (key != k.depends_on) continue;
+    for (const auto& [when, then] : k.default_when) {
+      if (set == when) def = then;
+    }
+  }
+  if (value == def) return "";
+  return k.file ? std::filesystem::path(value).filename().string() : value;
+}
+
 std::string type_text(const KeyDef& k) {
   if (k.file) return "file";
   if (k.text) return "text";
@@ -104,6 +124,7 @@ int list_engines() {
              "the keys its library declares: chainbench engines " + e.name +
                  ":path=FILE lists them"});
     }
+    t.wrap_text(kListWidth);
     t.print(std::cout);
     for (const EngineLimit& l : e.limits)
       std::cout << "  limit: " << l.what << ": " << fmt_g(l.value, 9) << " " << l.unit << "\n";
@@ -127,6 +148,7 @@ int list_engine(const std::string& text) {
   const EngineSpec spec = parse_engine_spec(text);
   const EngineDef& e = engine_def(spec.engine);
   std::cout << spec.label() << ": " << e.description << "\n";
+  if (e.spec_name) std::cout << "name: " << e.spec_name(spec) << " (as its library declares it)\n";
   if (!e.caveat.empty()) std::cout << "caveat: " << e.caveat << "\n";
   std::cout << "canonical: " << spec.str() << "\n\nkeys:\n";
   std::vector<KeyDef> keys = e.keys;
@@ -134,9 +156,11 @@ int list_engine(const std::string& text) {
     const std::vector<KeyDef> more = e.more_keys(spec);
     keys.insert(keys.end(), more.begin(), more.end());
   }
-  TextTable t({"  key", "type", "values", "default", "here", "meaning"});
+  TextTable t({"  key", "type", "values", "default", "given", "meaning"});
   for (const KeyDef& k : keys)
-    t.add({"  " + k.name, type_text(k), values_text(k), default_text(k), spec.get(k.name), k.help});
+    t.add({"  " + k.name, type_text(k), values_text(k), default_text(k), given_text(k, spec),
+           k.help});
+  t.wrap_text(kListWidth);
   t.print(std::cout);
   std::cout << "\ncan do: " << capabilities(spec) << "\n";
   for (const EngineLimit& l : e.limits)
@@ -147,6 +171,7 @@ int list_engine(const std::string& text) {
     TextTable c({"  counter", "over a run", "meaning"});
     for (const CounterDef& d : counters)
       c.add({"  " + d.name, aggregate_text(d.aggregate), d.help});
+    c.wrap_text(kListWidth);
     c.print(std::cout);
   }
   return 0;
@@ -160,9 +185,12 @@ void add_list_commands(CLI::App& app, int* status) {
   });
   auto spec = std::make_shared<std::string>();
   CLI::App* engines = app.add_subcommand("engines", "Engine specs and their keys");
-  engines->add_option("spec", *spec,
-                      "one engine's spec (e.g. plugin:path=FILE): its keys with type, range, "
-                      "default and help, what it can do and what it counts");
+  // Given empty, SPEC is a mistake (a shell variable that expanded to nothing), as --engines is.
+  engines
+      ->add_option("spec", *spec,
+                   "one engine's spec (e.g. plugin:path=FILE): its keys with type, range, "
+                   "default and help, what it can do and what it counts")
+      ->check(kEngineSpec);
   engines->callback(
       [status, spec] { *status = spec->empty() ? list_engines() : list_engine(*spec); });
 }

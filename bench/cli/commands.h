@@ -24,4 +24,12 @@ inline const CLI::Validator kEngineList(
     },
     "ENGINES", "engine list");
 
+// `engines SPEC` given an empty SPEC, likewise: every engine is listed by leaving it out.
+inline const CLI::Validator kEngineSpec(
+    [](std::string& spec) {
+      return spec.empty() ? std::string("no engine named (leave SPEC out for every engine)")
+                          : std::string();
+    },
+    "SPEC", "engine spec");
+
 }  // namespace chainbench

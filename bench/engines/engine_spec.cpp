@@ -74,14 +74,14 @@ std::string key_names(const std::vector<KeyDef>& keys) {
 
 }  // namespace
 
-std::string checked_key_value(const std::string& where, const KeyDef& key,
+std::string checked_key_value(const std::string& what, const KeyDef& key,
                               const std::string& value) {
   if (key.file) {
-    if (value.empty()) throw InputError(where + ": " + key.name + " is empty");
+    if (value.empty()) throw InputError(what + " is empty");
     std::error_code ec;
     if (!std::filesystem::is_regular_file(value, ec)) {
       throw InputError(
-          where + ": " + key.name + ": " +
+          what + ": " +
           (std::filesystem::exists(value, ec) ? "not a regular file: " : "no such file: ") +
           cut_for_message(value));
     }
@@ -89,25 +89,24 @@ std::string checked_key_value(const std::string& where, const KeyDef& key,
     return ec ? value : absolute.lexically_normal().string();
   }
   if (key.text) {
-    if (value.empty()) throw InputError(where + ": " + key.name + " is empty");
+    if (value.empty()) throw InputError(what + " is empty");
     return value;
   }
   if (!key.choices.empty()) {
     if (std::find(key.choices.begin(), key.choices.end(), value) == key.choices.end()) {
-      throw InputError(where + ": " + key.name + " must be one of " + join(key.choices, "|") +
-                       ", got \"" + cut_for_message(value) + "\"");
+      throw InputError(what + " must be one of " + join(key.choices, "|") + ", got \"" +
+                       cut_for_message(value) + "\"");
     }
     return value;
   }
   if (key.integer) {
-    return std::to_string(parse_integer(where + ": " + key.name, value,
-                                        static_cast<long long>(key.min),
+    return std::to_string(parse_integer(what, value, static_cast<long long>(key.min),
                                         static_cast<long long>(key.max)));
   }
-  const double v = parse_number(where + ": " + key.name, value);
+  const double v = parse_number(what, value);
   if (v < key.min || v > key.max) {
-    throw InputError(where + ": " + key.name + ": " + cut_for_message(value) +
-                     " is out of range [" + shortest(key.min) + ", " + shortest(key.max) + "]");
+    throw InputError(what + ": " + cut_for_message(value) + " is out of range [" +
+                     shortest(key.min) + ", " + shortest(key.max) + "]");
   }
   return shortest(v);
 }
@@ -126,7 +125,7 @@ void add_key_settings(const std::string& where, const std::vector<KeyDef>& keys,
     const auto g =
         std::find_if(given.begin(), given.end(), [&](const auto& p) { return p.first == k.name; });
     if (g != given.end()) {
-      spec.settings.emplace_back(k.name, checked_key_value(where, k, g->second));
+      spec.settings.emplace_back(k.name, checked_key_value(where + ": " + k.name, k, g->second));
     } else if (std::string d = default_of(k, spec.settings); !d.empty()) {
       spec.settings.emplace_back(k.name, std::move(d));
     } else {

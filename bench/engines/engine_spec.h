@@ -30,9 +30,9 @@ struct EngineSpec {
 
 struct KeyDef;
 
-// `value` as the canonical string has it, or InputError naming `where`, the key and the reason.
-std::string checked_key_value(const std::string& where, const KeyDef& key,
-                              const std::string& value);
+// `value` as the canonical string has it, or InputError "WHAT: reason" (`what` names the value:
+// the spec and the key, "chain:passes", or a plugin's key's default).
+std::string checked_key_value(const std::string& what, const KeyDef& key, const std::string& value);
 // Appends to spec.settings every key of `keys` in order: its value in `given` (checked) or its
 // default. InputError naming `where` for a key of `given` that `keys` lacks, a bad value or a
 // missing required key.

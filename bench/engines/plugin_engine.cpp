@@ -259,6 +259,7 @@ EngineDef register_plugin() {
   e.keys = {file_key("path", "the plugin's shared library (.so)")};
   e.more_keys = [](const EngineSpec& spec) { return load_plugin(spec.get("path"))->keys; };
   e.spec_counters = [](const EngineSpec& spec) { return load_plugin(spec.get("path"))->counters; };
+  e.spec_name = [](const EngineSpec& spec) { return load_plugin(spec.get("path"))->name; };
   e.isolated = true;
   e.capabilities = [](const EngineSpec& spec) {
     const std::uint32_t can = load_plugin(spec.get("path"))->api->capabilities;

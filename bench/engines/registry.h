@@ -77,6 +77,9 @@ struct EngineDef {
   // What an engine of `spec` counts when it follows from the spec (a plugin's, from its library);
   // when set, it stands for `counters`.
   std::function<std::vector<CounterDef>(const EngineSpec&)> spec_counters;
+  // The name the engine behind `spec` gives itself, when it is not chainbench's (a plugin's, as
+  // its library declares it), for `chainbench engines SPEC`; unset for the others.
+  std::function<std::string(const EngineSpec&)> spec_name;
   // How its times must be read, said beside every figure that quotes them (run JSON "caveat",
   // `chainbench engines`, the benchmark's context, the report's and README's ratios); or empty.
   std::string caveat;

@@ -1,6 +1,7 @@
 // A plain-text table with aligned columns, for terminal reports.
 #pragma once
 
+#include <cstddef>
 #include <initializer_list>
 #include <ostream>
 #include <string>
@@ -13,10 +14,20 @@ class TextTable {
  public:
   explicit TextTable(std::vector<std::string> header) : rows_{std::move(header)} {}
   void add(std::vector<std::string> row) { rows_.push_back(std::move(row)); }
+  // A table of text (keys and their help, not numbers): every column left-aligned and, where the
+  // table is wider than `width`, columns narrowed and their cells wrapped at spaces onto lines of
+  // their own column until it fits: first the last one, down to kMinWrapped characters (a longer
+  // word cut across lines), then the widest of the others in turn, each down to its longest word
+  // (a table that cannot fit so is left wider). The first column never wraps. Without it the first
+  // column is left-aligned, the others right.
+  void wrap_text(std::size_t width) { wrap_ = width; }
   void print(std::ostream& out) const;
+
+  static constexpr std::size_t kMinWrapped = 24;
 
  private:
   std::vector<std::vector<std::string>> rows_;
+  std::size_t wrap_ = 0;  // 0: numbers, right-aligned, never wrapped
 };
 
 // The parts joined into one string. (Long operator+ chains on std::string trip GCC 12's

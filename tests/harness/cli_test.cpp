@@ -509,34 +509,6 @@ TEST(Cli, ABadPluginKeyIsRefusedBeforeAnyEngineRuns) {
   }
 }
 
-// `chainbench engines SPEC` lists one engine: each key with its type, range, default and help,
-// what it can do and what it counts (a plugin's as its library declares them).
-TEST(Cli, EnginesSpecListsOneEnginesKeysCapabilitiesAndCounters) {
-  const std::string dir = CHAINBENCH_TEST_PLUGINS;
-  const Result plugin = chainbench("engines plugin:path=" + dir + "/libtest_plugin_none.so");
-  ASSERT_EQ(plugin.status, 0) << plugin.out;
-  for (const char* line :
-       {"  gain       number       [0, 10]           1", "a gain, from 0 to 10",
-        "  substeps  integer  [1, 8] whole", "  label        text          text        none",
-        "can do: kinematic bodies, per-axis drives", "  steps_sum        sum over the run",
-        "  steps_last              last step     steps taken, last"})
-    EXPECT_NE(plugin.out.find(line), std::string::npos) << line << "\n" << plugin.out;
-  // The spec's own values are shown beside the defaults.
-  const Result given = chainbench("engines plugin:path=" + dir + "/libtest_plugin_none.so,gain=3");
-  EXPECT_NE(given.out.find("canonical: plugin:path="), std::string::npos) << given.out;
-  EXPECT_NE(given.out.find(",gain=3,substeps=1,label=none"), std::string::npos) << given.out;
-  const Result box2d = chainbench("engines box2d");
-  EXPECT_EQ(box2d.status, 0) << box2d.out;
-  EXPECT_NE(box2d.out.find("  vel_iters  integer  [1, 1000] whole"), std::string::npos)
-      << box2d.out;
-  EXPECT_NE(box2d.out.find("  contacts  mean per step"), std::string::npos) << box2d.out;
-  // A plugin whose table is bad, or an engine that does not exist, is refused as in a run.
-  const Result bad = chainbench("engines plugin:path=" + dir + "/libtest_plugin_key_type.so");
-  EXPECT_EQ(bad.status, 2) << bad.out;
-  EXPECT_NE(bad.out.find("key substeps: its type is 7"), std::string::npos) << bad.out;
-  EXPECT_EQ(chainbench("engines nosuch").status, 2);
-}
-
 TEST(Cli, PluginFaultsExitTwoWithTheirReason) {
   const std::string dir = CHAINBENCH_TEST_PLUGINS;
   for (const auto& [fault, message] :

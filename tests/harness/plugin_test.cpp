@@ -210,7 +210,10 @@ INSTANTIATE_TEST_SUITE_P(
         Fault{"key_name",
               "key 0 has no valid name (letters a-z, digits and _, under 32): its "
               "name holds 'G'"},
-        Fault{"key_default", "key gain: its default: gain: 20 is out of range [0, 10]"},
+        // The plugin, its library, the key and the field, each named once, and the reason.
+        Fault{"key_default", "plugin ballistic (" CHAINBENCH_TEST_PLUGINS
+                             "/libtest_plugin_key_default.so): key gain: its default: 20 is out "
+                             "of range [0, 10]"},
         Fault{"key_range", "key substeps: its range [8, 1] is not two whole numbers"},
         Fault{"key_type", "key substeps: its type is 7"},
         Fault{"counter_aggregate", "counter steps_so_far: its aggregate is 9 (CB_AGG_MEAN 0"},

@@ -19,7 +19,8 @@ the subject's final-position error against the reference and which engines meet 
 The tables, in order: the summary (the subject against every engine, sleeping on and off, and
 every row where it loses), the headline (the moving scenes, where every engine works each step), the
 results (time per step of every engine on every row), the work and memory behind them (contacts
-per step and heap held per body), the subject's scaling per family, the harness' cost, and an
+per step and heap held per body), the worst frame (each engine's median and slowest
+step), the subject's scaling per family, the harness' cost, and an
 adapter's cost: an engine through chainbench beside the same scene built by hand in its own API
 (plain/FAMILY/ENGINE/SIZE rows, such as the box2d3 pyramid's).
 """
@@ -356,6 +357,29 @@ def work_table(context, runs):
     return out
 
 
+def worst_frame_table(context, runs):
+    """Per row and engine: the median timed step and the slowest, ms. A game budgets for the
+    slowest frame; with repetitions, each figure is the median over them."""
+    recipes = family_recipes(context)
+    engines, groups = ordered(runs)
+    if not any("step_ms_max" in b for b in runs.values()):
+        return []
+    out = ["", "The worst frame: each engine's median timed step and its slowest, ms (median · max; "
+           "on the moving scenes over the same 60 steps, on the others over every step timed):", "",
+           "| scene | " + " | ".join(f"{e} median · max" for e in engines) + " |",
+           "|---|" + "---:|" * len(engines)]
+    for family, size in groups:
+        cells = []
+        for e in engines:
+            b = runs.get((family, e, size))
+            if not b or "step_ms_max" not in b:
+                cells.append("-")
+                continue
+            cells.append(f"{fmt_ms(b.get('step_ms_median'))} · {fmt_ms(b['step_ms_max'])}")
+        out.append(f"| {row_label(recipes, family, size)} | " + " | ".join(cells) + " |")
+    return out
+
+
 def scaling_tables(context, runs, subject):
     """Per scaling family: the subject's time per body per step at each size, and its ratio to the
     family's base size (about 5-10k bodies)."""
@@ -442,6 +466,7 @@ def tables(context, runs, accuracy=None):
     out += headline(context, runs, accuracy, subject)
     out += results_table(context, runs, accuracy, subject, reference)
     out += work_table(context, runs)
+    out += worst_frame_table(context, runs)
     out += scaling_tables(context, runs, subject)
     out += harness_table(context, runs, subject)
     out += plain_table(context, runs)

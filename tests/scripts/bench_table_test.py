@@ -144,6 +144,20 @@ class MovingTablesTest(unittest.TestCase):
         pyramids = next(line for line in lines if line.startswith("| `many_pyramids` rows=cols=10 | - ·"))
         self.assertEqual(pyramids, "| `many_pyramids` rows=cols=10 | - · - | - · - | - |")
 
+    def test_worst_frame_gives_median_and_slowest_step_of_every_engine(self):
+        runs = {k: dict(v) for k, v in MOVING_RUNS.items()}
+        runs[("rain", "fast", "1000")].update(step_ms_median=0.9, step_ms_max=4.25)
+        runs[("rain", "ref", "1000")].update(step_ms_median=7.5, step_ms_max=12.0)
+        lines = bench_table.tables(MOVING_CONTEXT, runs).splitlines()
+        header = next(i for i, line in enumerate(lines) if line.startswith("The worst frame"))
+        self.assertEqual(lines[header + 2], "| scene | fast median · max | ref median · max | "
+                         "ref:sleep=1 median · max |")
+        row = next(line for line in lines[header:] if line.startswith("| `rain` cols=1,000 |"))
+        # Both figures as measured; an engine whose run has no such counter shows a dash.
+        self.assertEqual(row, "| `rain` cols=1,000 | 0.900 · 4.250 | 7.500 · 12.0 | - |")
+        # Without any slowest-step counter (an older benchmark JSON), there is no such table.
+        self.assertNotIn("The worst frame", bench_table.tables(MOVING_CONTEXT, MOVING_RUNS))
+
     def test_scaling_is_relative_to_the_family_base(self):
         lines = bench_table.tables(MOVING_CONTEXT, MOVING_RUNS).splitlines()
         start = lines.index("Scaling of `fast` on `many_pyramids` (time per body per step):")

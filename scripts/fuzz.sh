@@ -20,9 +20,14 @@ cd "$(dirname "$0")/.."
 usage() {
   echo "usage: $0 [SECONDS] [TARGET...]   or   $0 --runs N [--jobs J] [TARGET...]" >&2
   echo "  SECONDS, N, J: whole numbers from 1, without leading zeros; J at most N;" >&2
-  echo "  TARGET: world, scene_file or plugin" >&2
+  echo "  TARGET: world, scene_file or plugin, each at most once (default: all three)" >&2
   exit 2
 }
+# --help / -h: the comment at the top of this file, on standard output, and exit 0.
+if [[ "${1:-}" == "--help" || "${1:-}" == "-h" ]]; then
+  sed -n '2,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "$0"
+  exit 0
+fi
 # A whole number from 1 to 999,999,999,999 written without a leading zero (which bash would read
 # as octal) and short enough never to overflow.
 whole() { [[ "$1" =~ ^[1-9][0-9]{0,11}$ ]]; }
@@ -53,8 +58,14 @@ fi
 all=(world scene_file plugin)
 targets=("$@")
 [[ ${#targets[@]} -eq 0 ]] && targets=("${all[@]}")
+seen=" "
 for t in "${targets[@]}"; do
-  [[ " ${all[*]} " == *" $t "* ]] || { echo "fuzz.sh: no target \"$t\"" >&2; usage; }
+  # Matched against each name whole: "world scene_file" as one argument is no target.
+  known=0
+  for a in "${all[@]}"; do [[ "$t" == "$a" ]] && known=1; done
+  (( known )) || { echo "fuzz.sh: no target \"$t\"" >&2; usage; }
+  [[ "$seen" == *" $t "* ]] && { echo "fuzz.sh: target \"$t\" is given twice" >&2; usage; }
+  seen+="$t "
 done
 fuzz_names=("${targets[@]/#/fuzz_}")
 

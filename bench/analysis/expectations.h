@@ -37,6 +37,7 @@ struct ExpectOutcome {
   double limit = 0.0;
   double margin = 0.0;
   bool near = false;
+  friend bool operator==(const ExpectOutcome&, const ExpectOutcome&) = default;
 };
 
 // Whether an entry of this kind is judged in m/s (at_rest) rather than metres.
@@ -56,6 +57,7 @@ struct ExpectResult {
   // Every failed entry is a near miss (ExpectOutcome::near); false when none failed.
   bool near_miss = false;
   std::vector<ExpectOutcome> entries;  // one per scene.expect entry, in order
+  friend bool operator==(const ExpectResult&, const ExpectResult&) = default;
 };
 
 class ExpectationCheck {

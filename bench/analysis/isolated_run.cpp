@@ -141,6 +141,29 @@ Metrics read_metrics(Reader& r) {
   return m;
 }
 
+// Every field of ExpectResult, in declaration order (EngineRun's operator== and the round-trip
+// test in tests/harness/plugin_test.cpp catch one left out).
+void write_expect(Writer& w, const ExpectResult& e) {
+  w.pod(e.max_error), w.pod(e.max_speed_error);
+  w.pod(e.pass), w.pod(e.position_pass), w.pod(e.speed_pass);
+  w.pod(e.has_position), w.pod(e.has_speed), w.pod(e.near_miss);
+  w.list(std::span<const ExpectOutcome>(e.entries));
+}
+
+ExpectResult read_expect(Reader& r) {
+  ExpectResult e;
+  e.max_error = r.pod<double>();
+  e.max_speed_error = r.pod<double>();
+  e.pass = r.pod<bool>();
+  e.position_pass = r.pod<bool>();
+  e.speed_pass = r.pod<bool>();
+  e.has_position = r.pod<bool>();
+  e.has_speed = r.pod<bool>();
+  e.near_miss = r.pod<bool>();
+  e.entries = r.list<ExpectOutcome>();
+  return e;
+}
+
 std::string write_run(const EngineRun& run, StepRecorder* steps) {
   Writer w;
   w.pod(Tag::kRun);
@@ -152,10 +175,7 @@ std::string write_run(const EngineRun& run, StepRecorder* steps) {
   w.list(std::span<const double>(run.counters));
   w.pod(run.degraded_steps);
   w.pod(run.expect.has_value());
-  if (run.expect) {
-    w.pod(run.expect->max_error), w.pod(run.expect->pass);
-    w.list(std::span<const ExpectOutcome>(run.expect->entries));
-  }
+  if (run.expect) write_expect(w, *run.expect);
   w.pod(run.interrupted), w.pod(run.final_state);
   w.pod<std::uint64_t>(run.defs.size());
   for (const CounterDef& d : run.defs) {
@@ -185,13 +205,7 @@ EngineRun read_run(const Scene& scene, const EngineSpec& spec, const std::string
   run.hash = r.pod<std::uint64_t>();
   run.counters = r.list<double>();
   run.degraded_steps = r.pod<std::uint64_t>();
-  if (r.pod<bool>()) {
-    ExpectResult e;
-    e.max_error = r.pod<double>();
-    e.pass = r.pod<bool>();
-    e.entries = r.list<ExpectOutcome>();
-    run.expect = std::move(e);
-  }
+  if (r.pod<bool>()) run.expect = read_expect(r);
   run.interrupted = r.pod<bool>();
   run.final_state = r.pod<int>();
   const auto defs = r.pod<std::uint64_t>();
@@ -238,6 +252,14 @@ EngineRun read_run(const Scene& scene, const EngineSpec& spec, const std::string
 }
 
 }  // namespace
+
+std::string encode_run(const EngineRun& run) {
+  return write_run(run, nullptr);
+}
+
+EngineRun decode_run(const Scene& scene, const EngineSpec& spec, const std::string& bytes) {
+  return read_run(scene, spec, bytes, {});
+}
 
 EngineRun run_engine_in_child(const Scene& scene, const EngineSpec& spec,
                               const RunOptions& options) {

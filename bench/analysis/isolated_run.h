@@ -15,4 +15,10 @@ namespace chainbench {
 EngineRun run_engine_in_child(const Scene& scene, const EngineSpec& spec,
                               const RunOptions& options);
 
+// The bytes a child sends for a finished run (without its steps), and the run read back from
+// them: decode_run(scene, run.spec, encode_run(run)) == run, field by field, for a finished run
+// of `scene` whose verdict is judge()'s (the verdict is judged again from what came back).
+std::string encode_run(const EngineRun& run);
+EngineRun decode_run(const Scene& scene, const EngineSpec& spec, const std::string& bytes);
+
 }  // namespace chainbench

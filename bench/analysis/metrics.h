@@ -41,6 +41,7 @@ struct PairOverlap {
   std::size_t a = 0, b = 0;
   int step = 0;            // the state (steps taken)
   double tolerance = 0.0;  // what the pair may overlap before the run is penetrating, m
+  friend bool operator==(const PairOverlap&, const PairOverlap&) = default;
 };
 
 struct Metrics {
@@ -73,6 +74,9 @@ struct Metrics {
   std::vector<std::size_t> escaped;
   std::optional<TunnelEvent> tunnel;  // the first body seen passing through another
   std::uint64_t tunnel_count = 0;
+  // Every field equal (a NaN figure equals nothing): what a run carried from a child process
+  // (isolated_run.h) must be.
+  friend bool operator==(const Metrics&, const Metrics&) = default;
 };
 
 class MetricsRecorder {

@@ -35,6 +35,7 @@ struct Timing {
   double spread_ms = 0.0;
   double setup_ms = 0.0;
   int samples = 0;
+  friend bool operator==(const Timing&, const Timing&) = default;
 };
 
 struct EngineRun {
@@ -72,6 +73,9 @@ struct EngineRun {
   const std::vector<CounterDef>& counter_defs() const { return defs; }
 
   std::vector<CounterDef> defs;  // what the engine counts, in the order of `counters`
+
+  // Every field equal: a run carried from a child process (isolated_run.h) is the run itself.
+  friend bool operator==(const EngineRun&, const EngineRun&) = default;
 };
 
 struct RunOptions {

@@ -30,6 +30,7 @@ struct TunnelEvent {
   std::size_t body = 0;     // the body that came out on the far side
   std::size_t through = 0;  // the body it passed through
   int step = 0;             // the state it was seen in (steps taken)
+  friend bool operator==(const TunnelEvent&, const TunnelEvent&) = default;
 };
 
 class TunnelWatch {

@@ -57,6 +57,7 @@ struct Finding {
   // within a tenth of the tolerance.
   std::optional<double> margin, tolerance;
   bool near = false;
+  friend bool operator==(const Finding&, const Finding&) = default;
 };
 
 struct Verdict {
@@ -69,6 +70,7 @@ struct Verdict {
   bool near_miss() const;
   // "ok", or the worst class with its detail: "wrong: expect[0] box2 0.82 m from (0, 2.5)".
   std::string str() const;
+  friend bool operator==(const Verdict&, const Verdict&) = default;
 };
 
 // Judges a run from its metrics (stability and penetration must have been computed), its

@@ -42,6 +42,7 @@ struct CounterDef {
   Aggregate aggregate = Aggregate::kMean;
   std::string help;
   std::string column;  // its title in `run`'s table, or empty to leave it to the JSON
+  friend bool operator==(const CounterDef&, const CounterDef&) = default;
 };
 
 // A body that one of the engine's events of the last step concerns (a crush names the body

@@ -13,6 +13,7 @@ namespace chainbench {
 struct Vec2d {
   double x = 0.0;
   double y = 0.0;
+  friend bool operator==(const Vec2d&, const Vec2d&) = default;
 };
 
 enum class BodyKind { kStatic, kKinematic, kDynamic };

@@ -1,6 +1,7 @@
 #include "scene_file.h"
 
 #include "input_error.h"
+#include "scene_text.h"
 
 #include <nlohmann/json.hpp>
 
@@ -142,12 +143,20 @@ class Reader {
     return x && y;
   }
 
-  bool string(const json& v, const std::string& path, std::string& out) {
+  // A string field (scene_text.h): UTF-8 without control characters, at most max_bytes. `out`
+  // is left as it was when the value is refused, so that no message echoes it.
+  bool string(const json& v, const std::string& path, std::string& out,
+              std::size_t max_bytes = kMaxSceneNameBytes, const char* what = "a name") {
     if (!v.is_string()) {
       problem(path, std::string("must be a string, got ") + type_name(v));
       return false;
     }
-    out = v.get<std::string>();
+    const auto& text = v.get_ref<const std::string&>();
+    if (const std::string why = scene_text_problem(text, max_bytes, what); !why.empty()) {
+      problem(path, why);
+      return false;
+    }
+    out = text;
     return true;
   }
 
@@ -500,15 +509,21 @@ void driven_axes(Reader& r, const json& v, const std::string& path, Driver& d) {
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& source) {
+  if (const std::string why = scene_bytes_problem(text); !why.empty()) {
+    throw InputError(source + ": " + why);
+  }
   json root;
   try {
     root = json::parse(text);
   } catch (const json::exception& e) {  // syntax errors, and numbers beyond double range
     JsonWalk tracker;
     json::sax_parse(text, &tracker);
-    throw InputError(
-        source + ": " + tracker.path() + ": " +
-        (tracker.error().empty() ? std::string("not valid JSON: ") + e.what() : tracker.error()));
+    // The parser's message quotes what it last read, which may be bytes that are not UTF-8 or
+    // megabytes of a string: shown escaped and cut, as every echoed input.
+    const std::string why =
+        tracker.error().empty() ? std::string("not valid JSON: ") + e.what() : tracker.error();
+    throw InputError(source + ": " + cut_for_message(tracker.path()) + ": " +
+                     cut_for_message(why, 400));
   }
   Reader r(source);
   Scene s;
@@ -528,7 +543,10 @@ Scene parse_scene(const std::string& text, const std::string& source) {
   }
   s.name = "scene";
   if (root.contains("name")) r.string(root["name"], "name", s.name);
-  if (root.contains("description")) r.string(root["description"], "description", s.description);
+  if (root.contains("description")) {
+    r.string(root["description"], "description", s.description, kMaxSceneDescriptionBytes,
+             "a description");
+  }
   if (root.contains("gravity")) r.vec2(root["gravity"], "gravity", s.gravity);
   if (root.contains("dt")) r.number(root["dt"], "dt", s.dt);
   if (root.contains("steps")) r.integer(root["steps"], "steps", 1, limits::kMaxSteps, s.steps);
@@ -556,7 +574,7 @@ Scene parse_scene(const std::string& text, const std::string& source) {
         auto unnamed = [&](std::size_t k) {
           return bodies[k].is_object() && !bodies[k].contains("name");
         };
-        const std::string name = "\"" + s.bodies[i].name + "\"";
+        const std::string name = "\"" + cut_for_message(s.bodies[i].name) + "\"";
         const std::string other = "bodies[" + std::to_string(first) + "]";
         if (unnamed(i)) {
           r.problem(at + ".name", "is not given, and its default " + name + " already names " +

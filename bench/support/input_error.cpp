@@ -31,12 +31,22 @@ bool control(unsigned char c) {
   return c < 0x20u || c == 0x7fu;
 }
 
+// Whether text[i] starts no character a message may show: a byte that starts no well-formed
+// UTF-8 character, a C0 control or DEL, or a C1 control (U+0080-U+009F, which some terminals
+// obey as escapes).
+bool unshown(const std::string& text, std::size_t i, std::size_t n) {
+  if (n == 0) return true;
+  if (n == 1) return control(static_cast<unsigned char>(text[i]));
+  return n == 2 && static_cast<unsigned char>(text[i]) == 0xc2u &&
+         static_cast<unsigned char>(text[i + 1]) < 0xa0u;
+}
+
 }  // namespace
 
 std::string text_problem(const std::string& text) {
   for (std::size_t i = 0; i < text.size();) {
     const std::size_t n = utf8_length(text, i);
-    if (n == 0 || (n == 1 && control(static_cast<unsigned char>(text[i])))) {
+    if (unshown(text, i, n)) {
       constexpr char kHex[] = "0123456789abcdef";
       const auto c = static_cast<unsigned char>(text[i]);
       return std::string("holds the byte 0x") + kHex[c >> 4] + kHex[c & 15u] + " at offset " +
@@ -47,13 +57,12 @@ std::string text_problem(const std::string& text) {
   return "";
 }
 
-std::string cut_for_message(const std::string& text) {
-  constexpr std::size_t kShown = 80;
+std::string cut_for_message(const std::string& text, std::size_t shown) {
   std::string out;
   std::size_t i = 0;
-  while (i < text.size() && i < kShown) {
+  while (i < text.size() && i < shown) {
     const std::size_t n = utf8_length(text, i);
-    if (n == 0 || (n == 1 && control(static_cast<unsigned char>(text[i])))) {
+    if (unshown(text, i, n)) {
       // Shown as \xNN, so that an echoed input can neither drive the terminal nor make an
       // output file that is not UTF-8.
       constexpr char kHex[] = "0123456789abcdef";

@@ -2,6 +2,7 @@
 // message names the source, the field and the reason; the command exits with status 2.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
@@ -12,9 +13,9 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// `text` as a message may echo it: whole up to 80 bytes, else its first 80 and "…(N bytes)";
-// control characters and bytes that are not UTF-8 are shown as \xNN.
-std::string cut_for_message(const std::string& text);
+// `text` as a message may echo it: whole up to `shown` bytes, else its first `shown` and
+// "…(N bytes)"; control characters and bytes that are not UTF-8 are shown as \xNN.
+std::string cut_for_message(const std::string& text, std::size_t shown = 80);
 // Empty when `text` is UTF-8 without control characters; else which byte is not, and where.
 std::string text_problem(const std::string& text);
 // Parses all of `text` as a finite number, in the grammar of std::from_chars as every

@@ -219,6 +219,8 @@ ReplayPageSummary write_replay_page(std::ostream& out, const RunReport& report,
   data["quantum"] = recorder.quantum();
   data["stride"] = 1;
   data["reference"] = nullptr;
+  // Ctrl-C: the page shows the engines that finished before it, and says so.
+  data["interrupted"] = report.interrupted;
   data["engines"] = ordered_json::array();
   std::vector<const ReplayTrack*> tracks;
   for (const EngineRun* run : runs) {

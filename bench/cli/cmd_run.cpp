@@ -94,9 +94,11 @@ int run_scene(const RunArgs& a) {
   auto trace_out = open_output(a.trace, "--trace");
   auto replay_out = open_output(a.replay, a.replay_option);
   std::optional<TraceWriter> trace;
+  long long trace_kept = -1;  // the trace's bytes up to the end of the last engine that finished
   if (trace_out) {
     trace.emplace(trace_out->stream(), scene);
     options.observers.push_back(&*trace);
+    trace_kept = trace_out->written();
   }
   std::optional<ReplayRecorder> replay;
   if (replay_out) {
@@ -120,6 +122,7 @@ int run_scene(const RunArgs& a) {
     EngineRun r = run_engine(scene, spec, options);
     progress.clear();
     if (r.interrupted) return std::nullopt;  // a half run says nothing
+    if (trace_out) trace_kept = trace_out->written();
     return r;
   };
   // A replay measures every engine from the reference at every step, so the reference runs
@@ -146,6 +149,16 @@ int run_scene(const RunArgs& a) {
   if (reference && !included && !replay) report.reference = run_one(*reference);
   report.interrupted = interrupt->stopped();
   interrupt.reset();
+  if (report.interrupted && report.runs.empty() && !report.reference) {
+    // Nothing finished: every output keeps what it held (the temporaries go with their files).
+    Interrupt::report("no engine finished, so the outputs are left as they were");
+    return kInterruptedStatus;
+  }
+  if (report.interrupted && trace_out && !trace_out->cut_back(trace_kept)) {
+    // Written directly (a pipe): the rows of the run cut short are there; say where they start.
+    trace_out->stream() << "# interrupted: the rows after the last finished engine's are of an "
+                           "engine that did not finish\n";
+  }
   compare(report);
 
   print_run_table(std::cout, report);

@@ -98,6 +98,11 @@ int run(const StressArgs& a) {
   progress.clear();
   const bool stopped = interrupt->stopped();
   interrupt.reset();
+  if (stopped && verdicts.empty()) {
+    // Nothing finished: every output keeps what it held (the temporaries go with their files).
+    Interrupt::report("no run finished, so the outputs are left as they were");
+    return kInterruptedStatus;
+  }
   ran.resize(verdicts.size());  // a part names the runs it holds
   if (verdicts.empty() && !stopped) {
     std::cout << "part " << shard.index << "/" << shard.count << " holds none of the " << units

@@ -143,6 +143,12 @@ int run(const SweepArgs& a) {
   }
   const bool stopped = interrupt->stopped();
   interrupt.reset();
+  if (stopped && std::all_of(results.begin(), results.end(),
+                             [](const SweepResult& r) { return r.points.empty(); })) {
+    // Nothing finished: every output keeps what it held (the temporaries go with their files).
+    Interrupt::report("no point was measured, so the outputs are left as they were");
+    return kInterruptedStatus;
+  }
 
   for (const SweepResult& r : results) {
     print_sweep_table(std::cout, r);

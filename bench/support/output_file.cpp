@@ -136,6 +136,19 @@ OutputFile::~OutputFile() {
   forget(slot_);
 }
 
+long long OutputFile::written() {
+  if (temp_.empty() || finished_) return -1;
+  return static_cast<long long>(out_.tellp());
+}
+
+bool OutputFile::cut_back(long long at) {
+  if (temp_.empty() || finished_ || at < 0) return false;
+  out_.flush();
+  if (!out_ || truncate(temp_.c_str(), static_cast<off_t>(at)) != 0) return false;
+  out_.seekp(static_cast<std::streamoff>(at));
+  return static_cast<bool>(out_);
+}
+
 void OutputFile::finish() {
   if (finished_) return;
   out_.flush();

@@ -33,6 +33,12 @@ class OutputFile {
   OutputFile& operator=(const OutputFile&) = delete;
 
   std::ostream& stream() { return out_; }
+  // The bytes written so far, for cut_back(); -1 when the output is written directly.
+  long long written();
+  // Drops every byte written after the first `at` (a value of written()), so that what is written
+  // next follows them: a trace keeps the engines that finished. False, and nothing dropped, when
+  // the output is written directly (a pipe, a device): what went there cannot be taken back.
+  bool cut_back(long long at);
   const std::string& path() const { return path_; }
   // Flushes and closes the temporary; OutputError naming the path if not everything was written.
   void finish();

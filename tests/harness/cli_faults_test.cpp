@@ -160,6 +160,63 @@ TEST(CliFaults, CtrlCInRunKeepsTheEnginesThatFinished) {
   EXPECT_EQ(leftovers(dir, {"out.json", "out.csv", "log", "mark"}), std::vector<std::string>{});
 }
 
+// Ctrl-C in run writes only engines that finished: the trace holds none of the rows of the one
+// cut short, and the replay page shows the finished ones and says it was interrupted.
+TEST(CliFaults, CtrlCInRunWritesOnlyFinishedEnginesToTraceAndReplay) {
+  const std::string dir = folder("run_interrupt_trace");
+  const pid_t pid = start({"run", "--scene", "stack", "--set", "n=2", "--set", "steps=60",
+                           "--engines", "chain," + plugin("hang"), "--reference", "none", "--trace",
+                           dir + "t.csv", "--replay", dir + "r.html"},
+                          dir + "log", dir + "mark");
+  ASSERT_TRUE(wait_for(dir + "mark"));
+  kill(pid, SIGINT);
+  EXPECT_EQ(finish(pid), 130) << read(dir + "log");
+  std::istringstream trace(read(dir + "t.csv"));
+  std::string line;
+  std::size_t rows = 0;
+  std::getline(trace, line);  // the header
+  while (std::getline(trace, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    ++rows;
+    EXPECT_EQ(line.rfind("chain,", 0), 0u) << line;
+  }
+  EXPECT_GT(rows, 0u);
+  const std::string page = read(dir + "r.html");
+  EXPECT_NE(page.find("\"interrupted\":true"), std::string::npos);
+  EXPECT_EQ(leftovers(dir, {"t.csv", "r.html", "log", "mark"}), std::vector<std::string>{});
+}
+
+// Ctrl-C before anything finished leaves every previous output as it was (exit 130), in run and
+// in stress.
+TEST(CliFaults, CtrlCBeforeAnythingFinishedLeavesThePreviousOutputs) {
+  const std::string dir = folder("interrupt_nothing");
+  const std::vector<std::string> outputs{"o.json", "o.csv", "o.trace", "o.html", "s.json"};
+  for (const std::string& name : outputs)
+    write(dir + name, "previous " + name);
+  const pid_t run = start({"run", "--scene", "stack", "--set", "n=2", "--engines", plugin("hang"),
+                           "--reference", "none", "--json", dir + "o.json", "--csv", dir + "o.csv",
+                           "--trace", dir + "o.trace", "--replay", dir + "o.html"},
+                          dir + "log", dir + "mark");
+  ASSERT_TRUE(wait_for(dir + "mark"));
+  kill(run, SIGINT);
+  EXPECT_EQ(finish(run), 130) << read(dir + "log");
+  EXPECT_NE(read(dir + "log").find("no engine finished, so the outputs are left as they were"),
+            std::string::npos)
+      << read(dir + "log");
+  fs::remove(dir + "mark");
+  const pid_t stress = start({"stress", "--quick", "--filter", "size=0.01", "--engines",
+                              plugin("hang"), "--json", dir + "s.json"},
+                             dir + "log", dir + "mark");
+  ASSERT_TRUE(wait_for(dir + "mark"));
+  kill(stress, SIGINT);
+  EXPECT_EQ(finish(stress), 130) << read(dir + "log");
+  for (const std::string& name : outputs)
+    EXPECT_EQ(read(dir + name), "previous " + name);
+  std::vector<std::string> keep = outputs;
+  keep.insert(keep.end(), {"log", "mark"});
+  EXPECT_EQ(leftovers(dir, keep), std::vector<std::string>{});
+}
+
 // Ctrl-C in stress keeps the runs that finished.
 TEST(CliFaults, CtrlCInStressKeepsTheRunsThatFinished) {
   const std::string dir = folder("stress_interrupt");

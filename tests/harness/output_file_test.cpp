@@ -66,6 +66,26 @@ TEST(OutputFile, ACommittedOutputReplacesItsTargetKeepingModeAndLink) {
   EXPECT_EQ(files_in(dir), 3u);
 }
 
+// What a command takes back (a trace's rows of an engine that did not finish) is gone from the
+// file, and what it writes next follows what it kept, however large the part dropped.
+TEST(OutputFile, CutBackDropsWhatWasWrittenAfterAMark) {
+  const std::string dir = folder("cut_back");
+  const auto out = open_output(dir + "t.csv", "--trace");
+  out->stream() << "header\nfinished,1\n";
+  const long long kept = out->written();
+  EXPECT_EQ(kept, 18);
+  out->stream() << std::string(1 << 20, 'u');  // more than a stream buffer: some reached the disk
+  ASSERT_TRUE(out->cut_back(kept));
+  EXPECT_EQ(out->written(), kept);
+  out->stream() << "# end\n";
+  commit_outputs({out.get()});
+  EXPECT_EQ(read(dir + "t.csv"), "header\nfinished,1\n# end\n");
+  // Written directly, nothing can be taken back: the caller is told.
+  const auto device = open_output("/dev/null", "--trace");
+  EXPECT_EQ(device->written(), -1);
+  EXPECT_FALSE(device->cut_back(0));
+}
+
 TEST(OutputFile, ADeviceIsWrittenDirectly) {
   const auto out = open_output("/dev/null", "--json");
   out->stream() << "nothing";

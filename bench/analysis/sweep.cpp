@@ -3,6 +3,7 @@
 #include "input_error.h"
 #include "report.h"
 #include "text_table.h"
+#include "trace_writer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -175,8 +176,10 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
       ordered_json point;
       point["engine"] = p.run.engine;
       point["label"] = p.run.spec.label();
-      point["ms_per_step"] = p.run.timing.median_ms;
-      point["ms_spread"] = p.run.timing.spread_ms;
+      // A crash or a hang measured nothing: no time, so that it never reads as the fastest.
+      const bool failed = p.run.failure.has_value();
+      point["ms_per_step"] = failed ? ordered_json(nullptr) : ordered_json(p.run.timing.median_ms);
+      point["ms_spread"] = failed ? ordered_json(nullptr) : ordered_json(p.run.timing.spread_ms);
       point["final_position_error"] = {{"max", json_number(p.error.max)},
                                        {"rms", json_number(p.error.rms)}};
       point["energy_free_displacement"] =
@@ -198,18 +201,25 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
 
 void write_sweep_csv(std::ostream& out, const std::vector<SweepResult>& results) {
   out << "scene,engine,reference,ms_median,err_max,err_rms,efd_per_body_step,max_penetration,"
-         "stable,pareto,vary\n";
+         "stable,pareto,vary,verdict\n";
   for (const SweepResult& r : results) {
     for (const SweepPoint& p : r.points) {
       const Metrics& m = p.run.metrics;
       const auto stable = p.run.stable();
-      out << r.scene << ",\"" << p.run.engine << "\",\"" << r.reference << "\","
-          << fmt_g(p.run.timing.median_ms, 6) << ',' << fmt_g(p.error.max, 9) << ','
-          << fmt_g(p.error.rms, 9) << ','
+      // A crash or a hang measured nothing: its figures are empty (never 0 ms, never inf), and
+      // its verdict column says which it was.
+      const bool failed = p.run.failure.has_value();
+      const auto figure = [&](double v, int digits) {
+        return failed || !std::isfinite(v) ? std::string() : fmt_g(v, digits);
+      };
+      out << csv_field(r.scene) << ",\"" << p.run.engine << "\",\"" << r.reference << "\","
+          << figure(p.run.timing.median_ms, 6) << ',' << figure(p.error.max, 9) << ','
+          << figure(p.error.rms, 9) << ','
           << (m.efd_per_body_step ? fmt_g(*m.efd_per_body_step, 9) : "") << ','
           << (m.max_penetration ? fmt_g(*m.max_penetration, 9) : "") << ','
           << (stable ? (*stable ? "1" : "0") : "") << ',' << (p.pareto ? 1 : 0) << ','
-          << (r.variant ? r.variant->key + "=" + r.variant->text : "") << '\n';
+          << (r.variant ? r.variant->key + "=" + r.variant->text : "") << ','
+          << (p.run.verdict ? to_string(p.run.verdict->worst) : "") << '\n';
     }
   }
 }

@@ -601,8 +601,8 @@ TEST(Cli, SweepVaryRunsEachSceneOncePerValueAndNamesItEverywhere) {
   std::string header, row;
   std::getline(csv, header);
   std::getline(csv, row);
-  EXPECT_EQ(header.substr(header.size() - 5), ",vary");
-  EXPECT_EQ(row.substr(row.size() - 8), ",dt=1/30");
+  EXPECT_EQ(header.substr(header.size() - 13), ",vary,verdict");
+  EXPECT_EQ(row.substr(row.size() - 11), ",dt=1/30,ok");
 
   const Result bad = chainbench("sweep --scene stack --vary dt=1/30,1/30");
   EXPECT_EQ(bad.status, 2) << bad.out;

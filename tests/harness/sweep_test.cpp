@@ -1,7 +1,13 @@
 // Sweeps: the Pareto front calls a point faster only by more than the timing spread.
 #include "sweep.h"
 
+#include "engine_spec.h"
+
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+#include <string>
 
 namespace chainbench {
 namespace {
@@ -50,6 +56,45 @@ TEST(Pareto, AccuracyAndSpeedTogether) {
   EXPECT_TRUE(p[1].pareto);
   EXPECT_FALSE(p[2].pareto);
   EXPECT_TRUE(p[3].pareto);
+}
+
+}  // namespace
+}  // namespace chainbench
+
+namespace chainbench {
+namespace {
+
+// A crashed point measured nothing: its CSV row has empty time and error cells (never 0 ms, which
+// would read as the fastest, nor inf) and says crash in its verdict column; its JSON time is null.
+TEST(SweepOutput, ACrashedPointHasEmptyFiguresAndSaysCrash) {
+  SweepResult r;
+  r.scene = "s";
+  r.reference = "expect";
+  SweepPoint ok = point(0.5, 0.01, 0.1);
+  ok.run.spec = parse_engine_spec("chain");
+  ok.run.engine = "chain";
+  ok.run.verdict = Verdict{};
+  SweepPoint crashed;
+  crashed.run.spec = ok.run.spec;  // a plugin's spec would load it; the label is not looked at
+  crashed.run.engine = "plugin:path=x.so";
+  crashed.run.failure = "died of signal 11 (SIGSEGV)";
+  crashed.run.verdict = Verdict{VerdictClass::kCrash, {}};
+  crashed.error = {HUGE_VAL, HUGE_VAL};
+  r.points = {ok, crashed};
+  std::ostringstream csv;
+  write_sweep_csv(csv, {r});
+  std::istringstream lines(csv.str());
+  std::string header, first, second;
+  std::getline(lines, header), std::getline(lines, first), std::getline(lines, second);
+  EXPECT_EQ(header,
+            "scene,engine,reference,ms_median,err_max,err_rms,efd_per_body_step,max_penetration,"
+            "stable,pareto,vary,verdict");
+  EXPECT_EQ(first.substr(first.rfind(',')), ",ok");
+  EXPECT_EQ(second, "s,\"plugin:path=x.so\",\"expect\",,,,,,,0,,crash");
+  const auto j = sweep_json({r});
+  EXPECT_TRUE(j["scenes"][0]["points"][1]["ms_per_step"].is_null());
+  EXPECT_EQ(j["scenes"][0]["points"][1]["verdict"], "crash");
+  EXPECT_EQ(j["scenes"][0]["points"][0]["ms_per_step"], 0.5);
 }
 
 }  // namespace

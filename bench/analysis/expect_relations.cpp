@@ -87,8 +87,13 @@ RelationJudgement judge_relation(const Scene& scene, const Expectation& e, const
   } else {  // kOn: face to face, and over it along x
     const double dy = std::abs((a.c.y - a.r.y) - (b.c.y + b.r.y));
     const double sx = separation(a, b).x;
-    j = finish(std::hypot(dy, std::max(0.0, sx)), e.tolerance, sx < 0.0);
-    if (!j.pass) j.error = std::max({j.error, sx, 0.0});
+    if (sx < 0.0) {
+      j = finish(dy, e.tolerance);
+    } else {  // not over it: a miss of another kind than a distance beyond the tolerance
+      j = finish(sx, e.tolerance, false);
+      j.error = std::max({sx, dy - e.tolerance, 0.0});
+      j.beside = true;
+    }
   }
   j.other = e.other;
   return j;
@@ -123,8 +128,13 @@ std::string describe_relation(const Scene& scene, const ExpectOutcome& o) {
     case Kind::kBelow:
       return concat({body, ": top ", fmt_g(o.value), " m above the bottom of ", other, limit});
     case Kind::kOn:
-      return concat({body, ": ", fmt_g(o.value), " m from resting on ", other,
-                     " (or not over it along x)", limit});
+      if (o.beside) {
+        return concat({body, ": not over ", other, " along x (",
+                       o.value > 0.0 ? concat({fmt_g(o.value), " m beside it"})
+                                     : std::string("their sides only touch"),
+                       "), so not resting on it"});
+      }
+      return concat({body, ": ", fmt_g(o.value), " m from resting on ", other, limit});
     case Kind::kSqueezed:
       return o.other ? concat({body, ": a gap of ", fmt_g(o.value), " m to ", other,
                                " on the looser side", limit})

@@ -23,6 +23,10 @@ struct RelationJudgement {
   double error = 0.0;  // how far beyond `tolerance` (metres), 0 when it holds
   bool pass = true;
   std::optional<std::size_t> other;  // the body that decided
+  // on: the body is not over the other along x (their x extents only touch, or part); `value`
+  // is then the gap between them along x (0 where they touch), and the entry fails whatever
+  // the faces' distance.
+  bool beside = false;
 };
 
 // Judges e (is_relation(e.kind)) on state s.

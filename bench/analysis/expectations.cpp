@@ -78,7 +78,10 @@ bool ExpectationCheck::needs_depth(int k) const {
 // Keeps the state with the largest error, or, while every state passes, the largest value: the
 // state nearest to failing (the latest of equals).
 bool ExpectationCheck::judge(ExpectOutcome& o, double value, double error, bool pass, int k) {
-  const bool worse = o.state < 0 || !(error <= o.error) || (error == o.error && value >= o.value);
+  // A failed state outranks every passed one of the same error (an `on` whose sides only touch
+  // fails with error 0), and a passed state never replaces a failed one.
+  const bool tie = error == o.error && value >= o.value && !(pass && !o.pass);
+  const bool worse = o.state < 0 || !(error <= o.error) || (!pass && o.pass) || tie;
   if (worse) o.value = value, o.error = error, o.state = k;
   o.pass = o.pass && pass;
   return worse;
@@ -106,6 +109,7 @@ void ExpectationCheck::observe(int k, const BodyState& state, const BodyState* p
       const RelationJudgement r = judge_relation(scene_, e, state);
       if (judge(o, r.value, r.error, r.pass, k)) {
         o.body = e.body, o.other = r.other, o.position = state.position[e.body];
+        o.beside = r.beside;
         o.rms = o.error;
       }
       continue;
@@ -211,7 +215,7 @@ ExpectResult ExpectationCheck::result() const {
       const Vec2d h = scene_.bodies[*o.body].half_extents;
       scale = 0.05 * 2.0 * std::min(h.x, h.y);
     }
-    o.near = !o.pass && scale > 0.0 && o.margin <= 0.1 * scale;
+    o.near = !o.pass && !o.beside && scale > 0.0 && o.margin <= 0.1 * scale;
     if (is_speed(e.kind)) {
       r.has_speed = true;
       r.max_speed_error = std::max(r.max_speed_error, error);

@@ -37,6 +37,9 @@ struct ExpectOutcome {
   double limit = 0.0;
   double margin = 0.0;
   bool near = false;
+  // on: at the worst state the body was not over the other along x (RelationJudgement::beside);
+  // `value` is the gap along x, the margin the larger of it and the faces' miss, never near.
+  bool beside = false;
   friend bool operator==(const ExpectOutcome&, const ExpectOutcome&) = default;
 };
 

@@ -84,6 +84,7 @@ ordered_json expect_result_json(const Scene& s, const ExpectResult& r) {
     e["margin"] = json_number(o.margin);
     e["pass"] = o.pass;
     if (!o.pass) e["near_miss"] = o.near;
+    if (o.beside) e["beside"] = true;  // on: not over the other along x
     entries.push_back(std::move(e));
   }
   j["entries"] = std::move(entries);

@@ -106,7 +106,7 @@ std::string describe(const Scene& scene, const ExpectOutcome& o) {
   std::string margin;
   if (!o.pass && e.kind == Expectation::Kind::kBounds && o.near) {
     margin = " (a near miss: within a tenth of 5% of the body's size)";
-  } else if (!o.pass && e.kind != Expectation::Kind::kBounds) {
+  } else if (!o.pass && e.kind != Expectation::Kind::kBounds && !o.beside) {
     const char* unit = is_speed(e.kind) ? " m/s" : " m";
     margin = concat({", ", fmt_g(o.margin), unit, " beyond its ", fmt_g(o.limit), unit,
                      o.near ? " (a near miss: within a tenth of it)" : ""});

@@ -6,6 +6,7 @@
 #include "input_error.h"
 #include "runner.h"
 #include "scene_file.h"
+#include "verdict.h"
 
 #include <gtest/gtest.h>
 
@@ -99,6 +100,35 @@ TEST(ExpectRelations, ABoxSunkIntoAnotherIsNeitherAboveNorOnIt) {
   EXPECT_EQ(r.entries[2].state, 1);
   EXPECT_NEAR(r.entries[2].value, 0.5, 1e-12);
   EXPECT_NEAR(r.entries[2].error, 0.5, 1e-12);
+}
+
+// `on` a body the box is not over along x fails as a miss of its own kind, whatever the faces'
+// distance: never a near miss, never "0 m beyond" its tolerance. Placed by hand: b level with a's
+// top with their sides only touching (x gap 0), then 0.005 m apart along x.
+TEST(ExpectRelations, OnABodyBesideItIsNotOverItAndNoNearMiss) {
+  const Scene s = parse_scene(kStack, "stack.json");
+  for (const double gap : {0.0, 0.005}) {
+    ExpectationCheck check(s);
+    BodyState state(4);
+    state.position = {{0, -0.5}, {8, -0.5}, {0, 0.5}, {1.0 + gap, 1.5}};
+    check.observe(0, state, nullptr, nullptr);
+    state.position[3] = {0.2, 1.5};  // then resting on a: the earlier miss stays the worst
+    check.observe(1, state, nullptr, nullptr);
+    const ExpectResult r = check.result();
+    const ExpectOutcome& on = r.entries[2];
+    EXPECT_FALSE(on.pass) << gap;
+    EXPECT_TRUE(on.beside) << gap;
+    EXPECT_EQ(on.state, 0) << gap;
+    EXPECT_NEAR(on.value, gap, 1e-12);
+    EXPECT_FALSE(on.near) << gap;
+    EXPECT_FALSE(r.near_miss) << gap;
+    const std::string text = describe(s, on);
+    EXPECT_NE(text.find("b: not over a along x ("), std::string::npos) << text;
+    EXPECT_NE(text.find(gap > 0 ? "0.005 m beside it" : "their sides only touch"),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("beyond"), std::string::npos) << text;
+  }
 }
 
 // Top-down, no gravity: a crate between two static walls touching both sides is squeezed; with

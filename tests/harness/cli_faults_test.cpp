@@ -186,8 +186,8 @@ TEST(CliFaults, CtrlCInRunWritesOnlyFinishedEnginesToTraceAndReplay) {
   EXPECT_EQ(leftovers(dir, {"t.csv", "r.html", "log", "mark"}), std::vector<std::string>{});
 }
 
-// Ctrl-C before anything finished leaves every previous output as it was (exit 130), in run and
-// in stress.
+// Ctrl-C before anything finished leaves every previous output as it was (exit 130), in run,
+// sweep and stress.
 TEST(CliFaults, CtrlCBeforeAnythingFinishedLeavesThePreviousOutputs) {
   const std::string dir = folder("interrupt_nothing");
   const std::vector<std::string> outputs{"o.json", "o.csv", "o.trace", "o.html", "s.json"};
@@ -203,6 +203,14 @@ TEST(CliFaults, CtrlCBeforeAnythingFinishedLeavesThePreviousOutputs) {
   EXPECT_NE(read(dir + "log").find("no engine finished, so the outputs are left as they were"),
             std::string::npos)
       << read(dir + "log");
+  fs::remove(dir + "mark");
+  const pid_t sweep =
+      start({"sweep", "--scene", "stack", "--set", "n=2", "--set", "steps=60", "--grid",
+             plugin("hang"), "--json", dir + "o.json", "--csv", dir + "o.csv"},
+            dir + "log", dir + "mark");
+  ASSERT_TRUE(wait_for(dir + "mark"));
+  kill(sweep, SIGINT);
+  EXPECT_EQ(finish(sweep), 130) << read(dir + "log");
   fs::remove(dir + "mark");
   const pid_t stress = start({"stress", "--quick", "--filter", "size=0.01", "--engines",
                               plugin("hang"), "--json", dir + "s.json"},

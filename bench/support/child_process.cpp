@@ -148,6 +148,12 @@ ChildOutcome run_in_child_bytes(const std::function<std::string()>& work, std::s
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(4);
     close_inherited(fds[1]);
+    // Its own process group is not the terminal's: a read of the terminal would stop it, so its
+    // stdin is empty instead.
+    if (const int null = open("/dev/null", O_RDONLY); null >= 0 && null != 0) {
+      dup2(null, 0);
+      close(null);
+    }
     if (cap > 0) {
       const rlimit limit{cap, cap};
       setrlimit(RLIMIT_AS, &limit);

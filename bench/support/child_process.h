@@ -31,7 +31,8 @@ struct ChildOutcome {
 //   pipe's state decides nothing (a child may close it early, or a process it started may hold
 //   it open), and a child that ended is judged by its exit status;
 // - before `work` runs, the child closes every descriptor it inherited except stdin, stdout,
-//   stderr and its result pipe, so that it can never write into the caller's files;
+//   stderr and its result pipe, so that it can never write into the caller's files, and reads
+//   its stdin from /dev/null (out of the terminal's process group, a read would stop it);
 // - the child's address space is capped at child_memory_cap() bytes (RLIMIT_AS).
 ChildOutcome run_in_child_bytes(const std::function<std::string()>& work, std::string& result,
                                 double timeout_s, const std::atomic<bool>* stop = nullptr);

@@ -122,6 +122,19 @@ TEST(Isolated, TheChildInheritsNoDescriptorButStdio) {
   EXPECT_EQ(open_in_child, 0);
 }
 
+// Its stdin is empty: a read of the terminal from outside its process group would stop it.
+TEST(Isolated, TheChildReadsNothingFromStdin) {
+  long got = -1;
+  const ChildOutcome o = run_in_child(
+      [] {
+        char c;
+        return static_cast<long>(read(0, &c, 1));
+      },
+      got, 60);
+  ASSERT_TRUE(o.finished);
+  EXPECT_EQ(got, 0);
+}
+
 // Memory without end meets the child's cap: a failure that says so, not a hang or a swapped-out
 // machine.
 TEST(Isolated, AChildOutOfMemoryIsSaid) {

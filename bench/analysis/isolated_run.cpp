@@ -251,6 +251,19 @@ EngineRun read_run(const Scene& scene, const EngineSpec& spec, const std::string
   return run;
 }
 
+// A run that ended without figures: crash, hang or error, and why.
+EngineRun failed_run(const EngineSpec& spec, VerdictClass what, std::string why) {
+  EngineRun run;
+  run.spec = spec;
+  run.engine = spec.str();
+  run.failure = std::move(why);
+  Finding f;
+  f.what = what;
+  f.detail = spec.label() + " " + *run.failure;
+  run.verdict = Verdict{what, {std::move(f)}};
+  return run;
+}
+
 }  // namespace
 
 std::string encode_run(const EngineRun& run) {
@@ -268,6 +281,7 @@ EngineRun run_engine_in_child(const Scene& scene, const EngineSpec& spec,
       [&] {
         RunOptions inner = options;
         inner.isolate = false;
+        inner.step_mark = child_mark();
         StepRecorder steps;
         inner.observers.clear();
         if (!options.observers.empty()) inner.observers.push_back(&steps);
@@ -285,21 +299,28 @@ EngineRun run_engine_in_child(const Scene& scene, const EngineSpec& spec,
         return w.take();
       },
       bytes, options.timeout_s, options.stop);
-  if (child.finished) return read_run(scene, spec, bytes, options.observers);
-  EngineRun run;
-  run.spec = spec;
-  run.engine = spec.str();
+  // Where it was: "at step 12", or nothing before its first step.
+  const std::string at = child.mark > 0 ? " at step " + std::to_string(child.mark) : "";
+  if (child.finished) {
+    try {
+      return read_run(scene, spec, bytes, options.observers);
+    } catch (const std::exception& e) {
+      // Before its first step, a world the plugin would not build for these settings is the
+      // user's to fix (InputError, exit 2); once it steps, what goes wrong is the engine's, and
+      // its row says so while the other engines' results are kept.
+      if (child.mark <= 0) throw;
+      return failed_run(spec, VerdictClass::kError, e.what());
+    }
+  }
   if (child.interrupted) {
+    EngineRun run;
+    run.spec = spec;
+    run.engine = spec.str();
     run.interrupted = true;
     return run;
   }
-  run.failure = child_failure(child, options.timeout_s);
-  const VerdictClass what = child.hang ? VerdictClass::kHang : VerdictClass::kCrash;
-  Finding f;
-  f.what = what;
-  f.detail = spec.label() + " " + *run.failure;
-  run.verdict = Verdict{what, {std::move(f)}};
-  return run;
+  return failed_run(spec, child.hang ? VerdictClass::kHang : VerdictClass::kCrash,
+                    child_failure(child, options.timeout_s, at));
 }
 
 }  // namespace chainbench

@@ -291,7 +291,7 @@ void print_run_table(std::ostream& out, const RunReport& r) {
   TextTable t(header);
   auto add = [&](const EngineRun& run, bool is_reference) {
     const Comparison* c = comparison_of(r, run);
-    if (run.failure) {  // crash or hang: nothing was measured
+    if (run.failure) {  // crash, hang or error: nothing was measured
       std::vector<std::string> row(header.size(), "-");
       row.front() = run.spec.label() + (is_reference ? " (ref)" : "");
       row.back() = to_string(run.verdict->worst);

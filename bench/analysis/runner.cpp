@@ -110,6 +110,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
       run.interrupted = true;
       break;
     }
+    if (options.step_mark) options.step_mark->store(step + 1, std::memory_order_relaxed);
     const auto s0 = Clock::now();
     // Bodies leave before their to_step and enter after the step before their from_step, so
     // that state from_step shows them as the scene describes them; both in the step's time.

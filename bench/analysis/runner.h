@@ -56,9 +56,9 @@ struct EngineRun {
   std::optional<ExpectResult> expect;
   std::optional<Verdict> verdict;  // judged when stability and penetration were measured
   bool interrupted = false;        // stopped before its last step
-  // Set when the run's child process (isolated_run.h) crashed, hung or exited without its result:
-  // why ("died of signal 11 (SIGSEGV)"); the run then holds no figures, and its verdict is crash
-  // or hang.
+  // Set when the run's child process (isolated_run.h) crashed, hung or exited without its result,
+  // or its plugin failed a step: why ("died of signal 11 (SIGSEGV) at step 2", or the plugin's
+  // error); the run then holds no figures, and its verdict is crash, hang or error.
   std::optional<std::string> failure;
 
   // Finite, no body escaped, no blow-up, no body through another, and no step cut short; empty
@@ -90,6 +90,9 @@ struct RunOptions {
   // process (isolated_run.h), killed after timeout_s seconds; built-in engines run in process.
   bool isolate = false;
   double timeout_s = HUGE_VAL;
+  // When set, holds the step under way (counted from 1, as verdicts count "at step N") from the
+  // moment it starts; untouched before the first.
+  std::atomic<int>* step_mark = nullptr;
 };
 
 // The figures of a run's step times (ms, any order): median, mean, p95 and p99 by nearest rank,

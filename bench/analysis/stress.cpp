@@ -33,7 +33,9 @@ Summary summarize_case(const StressCase& c, const EngineSpec& engine) {
   Summary s{};
   try {
     const Scene scene = make_scene(c.scene, c.sets);
-    const EngineRun run = run_engine(scene, engine, RunOptions{});
+    RunOptions options;
+    options.step_mark = child_mark();  // for a crash to say where
+    const EngineRun run = run_engine(scene, engine, options);
     const Metrics& m = run.metrics;
     s.max_penetration = *m.max_penetration;
     s.peak_speed = *m.peak_speed;
@@ -161,9 +163,11 @@ VerdictClass StressVerdict::verdict() const {
 
 std::string StressVerdict::verdict_detail() const {
   if (!skipped.empty()) return skipped;
-  if (hang) return "ran out of time";
-  if (!finished && signal != 0) return "died of signal " + std::to_string(signal);
-  if (!finished) return "exited with status " + std::to_string(exit_status) + " and no result";
+  const std::string at = (step > 0 ? " at step " + std::to_string(step) : std::string()) +
+                         (out_of_memory ? ", out of memory" : "");
+  if (hang) return "ran out of time" + at;
+  if (!finished && signal != 0) return "died of signal " + std::to_string(signal) + at;
+  if (!finished) return "exited with status " + std::to_string(exit_status) + " and no result" + at;
   if (!error.empty()) return error;
   return detail;
 }
@@ -198,6 +202,7 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
       run_in_child([&] { return summarize_case(c, engine); }, s, timeout_s, stop);
   v.finished = child.finished, v.hang = child.hang, v.interrupted = child.interrupted;
   v.signal = child.signal, v.exit_status = child.exit_status;
+  v.step = child.mark, v.out_of_memory = child.out_of_memory;
   v.wall_s = child.wall_s;
   if (!v.finished) return v;  // a crash or a hang is never a known failure
   v.error = s.error;

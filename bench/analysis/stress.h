@@ -33,10 +33,12 @@ struct StressVerdict {
   EngineSpec engine;
   bool finished = false;  // false: the child crashed or ran out of time
   bool hang = false;
-  bool interrupted = false;                 // stopped by Ctrl-C before it finished
-  int signal = 0;                           // the signal that ended the child, if one did
-  int exit_status = 0;                      // or its exit status, if it exited without a result
-  std::string error;                        // the run failed with an exception in the child
+  bool interrupted = false;    // stopped by Ctrl-C before it finished
+  int signal = 0;              // the signal that ended the child, if one did
+  int exit_status = 0;         // or its exit status, if it exited without a result
+  int step = -1;               // the step under way when it crashed or ran out of time, or -1
+  bool out_of_memory = false;  // it ended near its memory cap (child_process.h)
+  std::string error;           // the run failed with an exception in the child
   VerdictClass judged = VerdictClass::kOk;  // the child's verdict on a finished run
   std::string detail;                       // what it rests on
   bool near_miss = false;  // every failed check of the child's verdict was a near miss (verdict.h)

@@ -237,8 +237,8 @@ void add_run_command(CLI::App& app, int* status) {
   run_app
       ->add_option("--timeout", args->timeout,
                    "seconds a plugin's run (in a child process) may take before it counts as a "
-                   "hang; default: no limit")
-      ->check(number_in(0.001, 1e9));
+                   "hang, 0.001 to 86400; default: no limit")
+      ->check(timeout_seconds());
   run_app->add_option("--json", args->json, "write the chainbench.run/1 JSON here")
       ->check(non_empty_path("output file"));
   run_app->add_option("--csv", args->csv, "write one CSV row per engine here")
@@ -264,8 +264,9 @@ void add_run_command(CLI::App& app, int* status) {
                       "3 (repeatable)");
   run_app->footer(
       "Exit status: 0 done; 2 bad input or usage; 3 a --require engine missed an expectation or "
-      "was not ok; 1 a plugin crashed or hung (its row says so; the other engines' results are "
-      "kept), an output could not be finished, or an internal failure; 130 Ctrl-C (the engines "
+      "was not ok; 1 a plugin crashed, hung or failed a step (its row says so; the other engines' "
+      "results are kept), an output could not be finished, or an internal failure; 130 Ctrl-C (the "
+      "engines "
       "that finished are kept).");
   run_app->callback([args, status, scene, file] {
     if (scene->count() == 0 && file->count() == 0)

@@ -4,6 +4,7 @@
 #include "input_error.h"
 #include "interrupt.h"
 #include "output_file.h"
+#include "plugin_load.h"
 #include "progress.h"
 #include "registry.h"
 #include "scene_library.h"
@@ -49,6 +50,9 @@ std::string describe_matrix(const std::vector<StressCase>& cases,
 }
 
 int run(const StressArgs& a) {
+  // A plugin that dies while it loads is a crash row in each of its cases, not the end of the
+  // matrix (plugin_engine.h).
+  keep_plugins_that_fail_to_load(true);
   const std::vector<EngineSpec> engines =
       a.engines.empty() ? default_engines() : parse_engine_list(a.engines);
   refuse_outputs_over_engine_files(engines, {{"--json", &a.json}});
@@ -131,6 +135,10 @@ int run(const StressArgs& a) {
   for (const StressVerdict& v : verdicts)
     failures[v.engine.label()] += v.fatal();
   int status = 0;
+  for (const std::string& why : plugins_that_failed_to_load()) {
+    std::cerr << "chainbench: " << why << " (its rows say crash; the other engines ran)\n";
+    status = 1;
+  }
   for (const auto& [label, count] : failures) {
     if (count == 0) continue;
     std::cerr << "chainbench: " << label << " is not ok on " << count << " stress case(s)\n";
@@ -153,7 +161,7 @@ void add_stress_command(CLI::App& app, int* status) {
                 "run only the cases whose label contains one of these |-separated texts");
   s->add_option("--timeout", args->timeout, "seconds a case may take before it counts as a hang")
       ->capture_default_str()
-      ->check(number_in(1.0, 86400.0));
+      ->check(timeout_seconds());
   s->add_option("--json", args->json, "write the chainbench.stress/1 JSON here")
       ->check(non_empty_path("output file"));
   s->add_option("--shard", args->shard,

@@ -214,7 +214,7 @@ void add_sweep_command(CLI::App& app, int* status) {
       ->add_option("--timeout", args->timeout,
                    "seconds a point of a plugin (run in a child process) may take before it "
                    "counts as a hang; default: no limit")
-      ->check(number_in(0.001, 1e9));
+      ->check(timeout_seconds());
   sweep_app->add_option("--json", args->json, "write the chainbench.sweep/1 JSON here")
       ->check(non_empty_path("output file"));
   sweep_app->add_option("--csv", args->csv, "write one CSV row per point here")

@@ -73,4 +73,9 @@ inline CLI::Validator number_in(double lo, double hi) {
       range);
 }
 
+// --timeout SECONDS of run, sweep and stress, one range for all: a millisecond to a day.
+inline CLI::Validator timeout_seconds() {
+  return number_in(0.001, 86400.0);
+}
+
 }  // namespace chainbench

@@ -4,10 +4,14 @@
 // What a plugin returns is checked as it comes: a library that cannot be loaded, has no entry
 // point, was built for another ABI or gives an incomplete table, a world it cannot build, a step
 // that fails, a state of the wrong size or with a non-finite number, each stops the run with a
-// message naming the plugin (InputError: exit status 2, or an `error` verdict in stress).
+// message naming the plugin (InputError: exit status 2, or an `error` verdict in stress). A
+// library is first loaded and checked in a child process (probe_load), so that one that crashes,
+// exits or hangs while loading is refused by name rather than ending chainbench.
 #include "plugin_engine.h"
+#include "child_process.h"
 #include "drive_schedule.h"
 #include "input_error.h"
+#include "plugin_load.h"
 #include "plugin_table.h"
 #include "plugin_text.h"
 #include "registry.h"
@@ -16,6 +20,7 @@
 #include <chainbench/engine_plugin.h>
 
 #include <dlfcn.h>
+#include <string.h>
 
 #include <algorithm>
 #include <climits>
@@ -32,6 +37,7 @@ namespace chainbench {
 namespace {
 
 constexpr std::size_t kErrorSize = 512;  // the error buffer chainbench hands a plugin
+constexpr double kProbeTimeout = 60.0;   // seconds a library may take to load and hand its table
 
 // What a plugin wrote into an error buffer of kErrorSize bytes, as a message may quote it.
 std::string plugin_error(const char* error) {
@@ -40,12 +46,9 @@ std::string plugin_error(const char* error) {
   return "its message " + t.problem + ", so it is not shown in full: " + t.shown;
 }
 
-Plugin open_plugin(const std::string& path) {
+// dlopen, the entry function and the table's check, in this process.
+Plugin load_checked(const std::string& path) {
   const std::string where = "plugin " + path;
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(where + ": no such file");
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(where + ": is a directory, not a shared library");
   void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (!handle) throw InputError(where + ": cannot load it: " + std::string(dlerror()));
   const auto entry = reinterpret_cast<cb_entry_fn>(dlsym(handle, CHAINBENCH_PLUGIN_ENTRY));
@@ -56,6 +59,77 @@ Plugin open_plugin(const std::string& path) {
   const cb_engine* api = entry();
   if (!api) throw InputError(where + ": " + CHAINBENCH_PLUGIN_ENTRY + "() returned null");
   return check_table(api, path);
+}
+
+// The load tried first in a child process (child_process.h): a library whose constructor, entry
+// function or table crashes, exits or hangs is refused by name (InputError) instead of taking
+// chainbench down. A refusal of its table comes back with its own message.
+// A stand-in table for a library kept after its probe failed: every capability, no counters and
+// no keys, and functions never called (make loads the library itself, in a child process).
+const cb_engine* stand_in_table() {
+  static const cb_engine table = [] {
+    cb_engine t{};
+    t.abi = CHAINBENCH_PLUGIN_ABI;
+    t.size = sizeof(cb_engine);
+    t.capabilities = known_capabilities();
+    return t;
+  }();
+  return &table;
+}
+
+bool g_keep_failed_loads = false;
+std::vector<std::string> g_failed_loads;
+
+void probe_load(const std::string& path) {
+  const std::string where = "plugin " + path;
+  std::string bytes;
+  const ChildOutcome o = run_in_child_bytes(
+      [&]() -> std::string {
+        try {
+          load_checked(path);
+          return "";
+        } catch (const std::exception& e) {
+          return std::string("!") + e.what();
+        }
+      },
+      bytes, kProbeTimeout);
+  if (o.finished) {
+    if (!bytes.empty()) throw InputError(bytes.substr(1));
+    return;
+  }
+  if (o.hang) {
+    throw InputError(where + ": hung while loading (no table within " +
+                     std::to_string(static_cast<int>(kProbeTimeout)) + " s)");
+  }
+  if (o.signal != 0) {
+    const char* name = sigabbrev_np(o.signal);
+    throw InputError(where + ": crashed while loading: signal " + std::to_string(o.signal) +
+                     (name ? std::string(" (SIG") + name + ")" : std::string()) +
+                     (o.out_of_memory ? ", out of memory" : ""));
+  }
+  throw InputError(where + ": exited while loading (status " + std::to_string(o.exit_status) + ")");
+}
+
+Plugin open_plugin(const std::string& path) {
+  const std::string where = "plugin " + path;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(where + ": no such file");
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(where + ": is a directory, not a shared library");
+  try {
+    probe_load(path);
+  } catch (const InputError& e) {
+    const std::string why = e.what();
+    if (!g_keep_failed_loads || why.find(" while loading") == std::string::npos) throw;
+    g_failed_loads.push_back(why);
+    Plugin p;
+    p.path = path;
+    p.name = "(not loaded)";
+    p.api = stand_in_table();
+    p.load_failure = why;
+    return p;
+  }
+  return load_checked(path);
 }
 // Loads each library once.
 std::shared_ptr<const Plugin> load_plugin(const std::string& path) {
@@ -273,10 +347,25 @@ EngineDef register_plugin() {
     return c;
   };
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
-    return std::make_unique<PluginEngine>(load_plugin(spec.get("path")), spec, scene);
+    auto plugin = load_plugin(spec.get("path"));
+    if (!plugin->load_failure.empty()) {
+      // Kept for stress, whose cases run in child processes: load it here as its probe did,
+      // where its crash is this case's.
+      load_checked(plugin->path);
+      throw InputError(plugin->load_failure);  // it failed only in its probe
+    }
+    return std::make_unique<PluginEngine>(std::move(plugin), spec, scene);
   };
   // Without CB_CAN_LIFETIMES, missing_capability refuses scenes whose bodies come and go.
   return e;
+}
+
+void keep_plugins_that_fail_to_load(bool keep) {
+  g_keep_failed_loads = keep;
+}
+
+std::vector<std::string> plugins_that_failed_to_load() {
+  return g_failed_loads;
 }
 
 }  // namespace chainbench

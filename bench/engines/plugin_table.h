@@ -21,6 +21,10 @@ struct Plugin {
   const cb_engine* api = nullptr;
   std::vector<CounterDef> counters;
   std::vector<KeyDef> keys;  // as the spec parser checks them (KeyDef)
+  // Set for a library that crashed, exited or hung while its probe loaded it, when such a library
+  // is kept (keep_plugins_that_fail_to_load): why. Its table is then a stand-in (no keys or
+  // counters, every capability) and it is never loaded in this process.
+  std::string load_failure;
 };
 
 // "plugin NAME (PATH)", as messages name a plugin.

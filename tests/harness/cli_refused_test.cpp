@@ -86,7 +86,7 @@ constexpr BadCall kBadCalls[] = {
     {"sweep --scene stack --steps 1.5", "--steps: \"1.5\" is not a whole number"},
     {"run --scene stack --steps 0", "--steps: 0 is outside [1, 10000000]"},
     {"run --scene stack --replay-mb x", "--replay-mb: \"x\" is not a number"},
-    {"stress --timeout nan", "--timeout: nan is outside [1, 86400]"},
+    {"stress --timeout nan", "--timeout: nan is outside [0.001, 86400]"},
     {"run --scene random_pile --set seed=2147483648", "2147483648 is out of range [0, 2147483647]"},
     {"run --scene-file ''", "--scene-file: the scene file path is empty"},
     {"sweep --scene-file ''", "--scene-file: the scene file path is empty"},

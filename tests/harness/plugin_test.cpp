@@ -250,7 +250,11 @@ INSTANTIATE_TEST_SUITE_P(
         Fault{"capability", "sets capability bits 256 that this chainbench does"},
         Fault{"error_escape",
               "its message holds the non-printable byte 0x1b at offset 3, so it is "
-              "not shown in full: \"bad\" (cut)"}),
+              "not shown in full: \"bad\" (cut)"},
+        // A library that dies while it is loaded and checked (in a child process first).
+        Fault{"load_crash", "libtest_plugin_load_crash.so: crashed while loading: signal 11"},
+        Fault{"entry_crash", "libtest_plugin_entry_crash.so: crashed while loading: signal 11"},
+        Fault{"name_guard", "libtest_plugin_name_guard.so: crashed while loading: signal 11"}),
     [](const ::testing::TestParamInfo<Fault>& info) { return info.param.name; });
 
 TEST(Plugin, AMissingFileIsNamed) {

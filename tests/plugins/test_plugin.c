@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #define FAULT_NONE 0
@@ -47,6 +48,14 @@
 #define FAULT_COUNTER_DESCRIPTION 32 /* a counter whose description holds a newline */
 #define FAULT_LIFETIMES_NULL 33      /* CB_CAN_LIFETIMES without remove_body */
 #define FAULT_ADD_REFUSED 34         /* add_body refuses every body */
+/* Hostile to the process it runs in (bench/support/child_process.h guards against each): */
+#define FAULT_CLOSE_FDS 35   /* closes every descriptor above stderr, then hangs at step 3 */
+#define FAULT_FORK_HOLD 36   /* leaves a process of its own holding them, then SIGSEGV at step 3 */
+#define FAULT_FORGE 37       /* writes 4 KiB into descriptors 3 to 63, then _exit(0) */
+#define FAULT_OOM 38         /* allocates without end at step 3 (abort() when malloc fails) */
+#define FAULT_LOAD_CRASH 39  /* dies of SIGSEGV in a static constructor, while dlopen runs */
+#define FAULT_ENTRY_CRASH 40 /* dies of SIGSEGV in its entry function */
+#define FAULT_NAME_GUARD 41  /* a name of 5 bytes ending the page before an unreadable one */
 
 #ifndef TEST_PLUGIN_FAULT
 #define TEST_PLUGIN_FAULT FAULT_NONE
@@ -65,8 +74,33 @@ static void write_error(char* error, size_t size, const char* text) {
   if (size > 0) snprintf(error, size, "%s", text);
 }
 
+/* The hostile faults' part of create. */
+static void hostile_create(void) {
+  int fd;
+  if (TEST_PLUGIN_FAULT == FAULT_CLOSE_FDS) {
+    for (fd = 3; fd < 1024; ++fd)
+      close(fd);
+  }
+  if (TEST_PLUGIN_FAULT == FAULT_FORK_HOLD && fork() == 0) {
+    /* Holds whatever it inherited but the standard streams (the test reads those to their end),
+     * in a session of its own, for longer than the test waits. */
+    close(0), close(1), close(2);
+    setsid();
+    sleep(20);
+    _exit(0);
+  }
+  if (TEST_PLUGIN_FAULT == FAULT_FORGE) {
+    char junk[4096];
+    memset(junk, 'A', sizeof junk);
+    for (fd = 3; fd < 64; ++fd)
+      if (write(fd, junk, sizeof junk) < 0) continue;
+    _exit(0);
+  }
+}
+
 static cb_world* create(const cb_world_desc* desc, char* error, size_t error_size) {
   cb_world* w;
+  hostile_create();
   if (TEST_PLUGIN_FAULT == FAULT_CREATE) {
     write_error(error, error_size, "this plugin builds no worlds");
     return NULL;
@@ -148,6 +182,17 @@ static int step(cb_world* w, char* error, size_t error_size) {
     return -1;
   }
   if (TEST_PLUGIN_FAULT == FAULT_STEP_RC && w->steps == 3) return 2;
+  if (TEST_PLUGIN_FAULT == FAULT_CLOSE_FDS && w->steps == 3)
+    for (;;)
+      pause();
+  if (TEST_PLUGIN_FAULT == FAULT_FORK_HOLD && w->steps == 3) raise(SIGSEGV);
+  if (TEST_PLUGIN_FAULT == FAULT_OOM && w->steps == 3) {
+    for (;;) {
+      char* p = malloc(1u << 24);
+      if (!p) abort();
+      memset(p, 1, 1u << 24);
+    }
+  }
   if (TEST_PLUGIN_FAULT == FAULT_CRASH && w->steps == 2) raise(SIGSEGV);
   if (TEST_PLUGIN_FAULT == FAULT_ABORT && w->steps == 10) abort();
   if (TEST_PLUGIN_FAULT == FAULT_EXIT && w->steps == 10) exit(0);
@@ -298,6 +343,25 @@ CHAINBENCH_PLUGIN_EXPORT const cb_engine* not_the_entry_point(void) {
 }
 #else
 CHAINBENCH_PLUGIN_EXPORT const cb_engine* chainbench_engine_plugin(void) {
+  if (TEST_PLUGIN_FAULT == FAULT_ENTRY_CRASH) raise(SIGSEGV);
+#if TEST_PLUGIN_FAULT == FAULT_NAME_GUARD
+  {
+    /* A copy of the table whose name a read past its 5 bytes faults on. */
+    static cb_engine guarded;
+    const long page = sysconf(_SC_PAGESIZE);
+    char* m = mmap(NULL, 2 * page, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (m == MAP_FAILED || mprotect(m + page, page, PROT_NONE) != 0) return NULL;
+    memset(m + page - 5, 'a', 5);
+    guarded = engine;
+    guarded.name = m + page - 5;
+    return &guarded;
+  }
+#endif
   return &engine;
+}
+#endif
+#if TEST_PLUGIN_FAULT == FAULT_LOAD_CRASH
+__attribute__((constructor)) static void crash_while_loading(void) {
+  raise(SIGSEGV);
 }
 #endif

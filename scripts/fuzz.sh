@@ -86,7 +86,7 @@ summary=()
 for target in "${targets[@]}"; do
   work=build-asan/corpus/$target
   artifacts=$build/artifacts/$target/
-  mkdir -p "$work" "$artifacts"
+  mkdir -p "$work" "$artifacts" "build-asan/artifacts/$target"
   budget_text="$seconds s"
   [[ -n "$runs" ]] && budget_text="$runs executions in $jobs process(es)"
   echo "fuzz.sh: fuzz_$target, $budget_text (logs: $build/fuzz_$target.*.log)" >&2

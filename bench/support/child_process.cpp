@@ -55,21 +55,6 @@ void close_inherited(int keep) {
   close_from(static_cast<unsigned>(keep) + 1, ~0u);
 }
 
-bool sanitized() {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-  return true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || \
-    __has_feature(memory_sanitizer)
-  return true;
-#else
-  return false;
-#endif
-#else
-  return false;
-#endif
-}
-
 // A process id as a descriptor that becomes readable when the process ends, or -1 (kernels
 // before 5.3): the parent then looks every few milliseconds.
 int open_pidfd(pid_t pid) {
@@ -94,8 +79,23 @@ void read_available(int fd, std::string& bytes, bool& eof) {
 
 }  // namespace
 
+bool under_sanitizer() {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  return true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || \
+    __has_feature(memory_sanitizer)
+  return true;
+#else
+  return false;
+#endif
+#else
+  return false;
+#endif
+}
+
 std::uint64_t child_memory_cap() {
-  if (sanitized()) return 0;  // the sanitizers reserve terabytes of address space
+  if (under_sanitizer()) return 0;  // the sanitizers reserve terabytes of address space
   if (const char* mb = std::getenv("CHAINBENCH_CHILD_MEMORY_MB")) {
     char* end = nullptr;
     const unsigned long long v = std::strtoull(mb, &end, 10);

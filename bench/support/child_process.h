@@ -42,6 +42,10 @@ ChildOutcome run_in_child_bytes(const std::function<std::string()>& work, std::s
 // under AddressSanitizer or ThreadSanitizer, which reserve far more address space.
 std::uint64_t child_memory_cap();
 
+// Whether this build runs under a sanitizer (ASan, TSan, MSan): then a child that faults is
+// reported by the sanitizer, which ends it with SIGABRT, not the signal of the fault.
+bool under_sanitizer();
+
 // In a child of run_in_child_bytes, a number shared with the parent (ChildOutcome::mark): the
 // step a run has reached, say, so that a crash can say where. Null outside such a child.
 std::atomic<int>* child_mark();

@@ -17,6 +17,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// How a fault in a child is told: under a sanitizer, by its report and SIGABRT.
+std::string segv_text() {
+  return chainbench::under_sanitizer() ? "signal 6 (SIGABRT)" : "signal 11 (SIGSEGV)";
+}
+
 using cli::chainbench;
 using cli::Result;
 using Clock = std::chrono::steady_clock;
@@ -60,7 +65,7 @@ TEST(CliIsolated, TheWaitEndsWithTheChildOrItsTime) {
   const Result held = chainbench("run " + kScene + engines + plugin("fork_hold"));
   EXPECT_LT(seconds_since(t0), 15.0);  // its helper lives 20 s
   EXPECT_EQ(held.status, 1) << held.out;
-  EXPECT_NE(held.out.find("died of signal 11 (SIGSEGV) at step 3"), std::string::npos) << held.out;
+  EXPECT_NE(held.out.find("died of " + segv_text() + " at step 3"), std::string::npos) << held.out;
   EXPECT_EQ(held.out.find("ran out of time"), std::string::npos) << held.out;
 }
 
@@ -99,7 +104,7 @@ TEST(CliIsolated, APluginThatDiesWhileLoadingIsNamed) {
   for (const char* fault : {"load_crash", "entry_crash", "name_guard"}) {
     SCOPED_TRACE(fault);
     const std::string said =
-        "libtest_plugin_" + std::string(fault) + ".so: crashed while loading: signal 11 (SIGSEGV)";
+        "libtest_plugin_" + std::string(fault) + ".so: crashed while loading: " + segv_text();
     for (const std::string& cmd :
          {"run " + kScene + " --engines chain," + plugin(fault),
           "sweep " + kScene + " --grid " + plugin(fault), "engines " + plugin(fault)}) {

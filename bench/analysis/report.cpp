@@ -1,6 +1,7 @@
 #include "report.h"
 
 #include "text_table.h"
+#include "trace_writer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -506,15 +507,15 @@ void write_run_csv(std::ostream& out, const RunReport& r) {
   auto row = [&](const EngineRun& run) {
     const Comparison* c = comparison_of(r, run);
     const Metrics& m = run.metrics;
-    out << r.scene->name << ",\"" << run.engine << "\"," << r.scene->bodies.size() << ','
-        << r.scene->steps << ',' << fmt_g(r.scene->dt, 9) << ',' << fmt_g(run.timing.median_ms, 6)
-        << ',' << fmt_g(run.timing.mean_ms, 6) << ',' << fmt_g(run.timing.p95_ms, 6) << ','
-        << fmt_g(run.timing.p99_ms, 6) << ',' << fmt_g(run.timing.max_ms, 6) << ','
-        << fmt_g(run.timing.setup_ms, 6) << ',' << (c ? fmt_g(c->error.max, 9) : "") << ','
-        << (c ? fmt_g(c->error.rms, 9) : "") << ',' << num(m.efd_total) << ','
-        << num(m.efd_per_body_step) << ',' << num(m.efd_max_step) << ',' << num(m.max_penetration)
-        << ',' << num(m.peak_speed) << ',' << flag(m.finite) << ',' << flag(m.in_bounds) << ','
-        << flag(run.stable()) << ',' << hex(run.hash) << ',';
+    out << csv_field(r.scene->name) << ',' << csv_quoted(run.engine) << ','
+        << r.scene->bodies.size() << ',' << r.scene->steps << ',' << fmt_g(r.scene->dt, 9) << ','
+        << fmt_g(run.timing.median_ms, 6) << ',' << fmt_g(run.timing.mean_ms, 6) << ','
+        << fmt_g(run.timing.p95_ms, 6) << ',' << fmt_g(run.timing.p99_ms, 6) << ','
+        << fmt_g(run.timing.max_ms, 6) << ',' << fmt_g(run.timing.setup_ms, 6) << ','
+        << (c ? fmt_g(c->error.max, 9) : "") << ',' << (c ? fmt_g(c->error.rms, 9) : "") << ','
+        << num(m.efd_total) << ',' << num(m.efd_per_body_step) << ',' << num(m.efd_max_step) << ','
+        << num(m.max_penetration) << ',' << num(m.peak_speed) << ',' << flag(m.finite) << ','
+        << flag(m.in_bounds) << ',' << flag(run.stable()) << ',' << hex(run.hash) << ',';
     // The first CSV's four counter columns, filled by any engine with counters of those names.
     out << num(run.counter("resolve_calls")) << ',' << num(run.counter("max_depth")) << ','
         << num(run.counter("budget_hits")) << ',' << num(run.counter("crush_events"));
@@ -523,11 +524,12 @@ void write_run_csv(std::ostream& out, const RunReport& r) {
         << (run.expect ? (run.expect->pass ? "1" : "0") : "") << ','
         << (run.verdict ? to_string(run.verdict->worst) : "") << ',' << run.degraded_steps << ','
         << flag(m.tunnelled) << ',' << (m.peak_speed ? std::to_string(m.escaped.size()) : "")
-        << ",\"";
+        << ',';
     const std::vector<CounterDef>& defs = run.counter_defs();
+    std::string counters;
     for (std::size_t c = 0; c < defs.size() && c < run.counters.size(); ++c)
-      out << (c ? ";" : "") << defs[c].name << '=' << fmt_g(run.counters[c], 9);
-    out << "\"\n";
+      counters += (c ? ";" : "") + defs[c].name + '=' + fmt_g(run.counters[c], 9);
+    out << csv_quoted(counters) << '\n';
   };
   for (const EngineRun& run : r.runs)
     row(run);

@@ -212,8 +212,8 @@ void write_sweep_csv(std::ostream& out, const std::vector<SweepResult>& results)
       const auto figure = [&](double v, int digits) {
         return failed || !std::isfinite(v) ? std::string() : fmt_g(v, digits);
       };
-      out << csv_field(r.scene) << ",\"" << p.run.engine << "\",\"" << r.reference << "\","
-          << figure(p.run.timing.median_ms, 6) << ',' << figure(p.error.max, 9) << ','
+      out << csv_field(r.scene) << ',' << csv_quoted(p.run.engine) << ',' << csv_quoted(r.reference)
+          << ',' << figure(p.run.timing.median_ms, 6) << ',' << figure(p.error.max, 9) << ','
           << figure(p.error.rms, 9) << ','
           << (m.efd_per_body_step ? fmt_g(*m.efd_per_body_step, 9) : "") << ','
           << (m.max_penetration ? fmt_g(*m.max_penetration, 9) : "") << ','

@@ -6,8 +6,7 @@
 
 namespace chainbench {
 
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos && !text.empty()) return text;
+std::string csv_quoted(const std::string& text) {
   std::string q = "\"";
   for (const char c : text) {
     if (c == '"') q.push_back('"');
@@ -15,6 +14,11 @@ std::string csv_field(const std::string& text) {
   }
   q.push_back('"');
   return q;
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos && !text.empty()) return text;
+  return csv_quoted(text);
 }
 
 namespace {

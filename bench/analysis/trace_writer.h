@@ -40,5 +40,8 @@ class TraceWriter final : public StepObserver {
 
 // A CSV field: as is, or quoted (quotes doubled) when it holds a comma, quote or line break.
 std::string csv_field(const std::string& text);
+// A CSV field always quoted (quotes doubled), for columns whose fields are quoted whatever they
+// hold.
+std::string csv_quoted(const std::string& text);
 
 }  // namespace chainbench

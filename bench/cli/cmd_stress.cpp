@@ -139,6 +139,19 @@ int run(const StressArgs& a) {
     std::cerr << "chainbench: " << why << " (its rows say crash; the other engines ran)\n";
     status = 1;
   }
+  // A plugin that crashed, hung or failed is a fault of the command's own inputs, as in run and
+  // sweep, whatever gates the build.
+  std::map<std::string, int> plugin_faults;
+  for (const StressVerdict& v : verdicts) {
+    if (engine_def(v.engine.engine).isolated && v.skipped.empty() &&
+        (!v.finished || !v.error.empty()))
+      ++plugin_faults[v.engine.label()];
+  }
+  for (const auto& [label, count] : plugin_faults) {
+    std::cerr << "chainbench: " << label << " crashed, hung or failed on " << count
+              << " stress case(s) (its rows say which)\n";
+    status = 1;
+  }
   for (const auto& [label, count] : failures) {
     if (count == 0) continue;
     std::cerr << "chainbench: " << label << " is not ok on " << count << " stress case(s)\n";
@@ -172,8 +185,8 @@ void add_stress_command(CLI::App& app, int* status) {
       "Verdicts, worst first: crash, hang, error, unstable, escaped, tunnelled, wrong, "
       "penetrating, budget, ok (skipped: the engine cannot do what the case needs).\nExit status 1 "
       "when an engine that gates the build (the modern chain solver) is anything but ok or budget "
-      "on a case that is not one of its listed known failures; other engines' verdicts are "
-      "reported only.");
+      "on a case that is not one of its listed known failures, or when a plugin crashed, hung or "
+      "failed on a case; other engines' verdicts are reported only.");
   s->callback([args, status] { *status = run(*args); });
 }
 

@@ -21,9 +21,11 @@ std::size_t utf8_length(const std::string& text, std::size_t i) {
   for (std::size_t k = 1; k < n; ++k) {
     if ((byte(i + k) & 0xc0u) != 0x80u) return 0;
   }
-  if (n == 2 && lead < 0xc2u) return 0;                          // overlong
-  if (n == 3 && lead == 0xe0u && byte(i + 1) < 0xa0u) return 0;  // overlong
+  if (n == 2 && lead < 0xc2u) return 0;                           // overlong
+  if (n == 3 && lead == 0xe0u && byte(i + 1) < 0xa0u) return 0;   // overlong
+  if (n == 3 && lead == 0xedu && byte(i + 1) >= 0xa0u) return 0;  // a UTF-16 surrogate
   if (n == 4 && (lead > 0xf4u || (lead == 0xf0u && byte(i + 1) < 0x90u))) return 0;
+  if (n == 4 && lead == 0xf4u && byte(i + 1) >= 0x90u) return 0;  // above U+10FFFF
   return n;
 }
 
@@ -31,14 +33,36 @@ bool control(unsigned char c) {
   return c < 0x20u || c == 0x7fu;
 }
 
+// The code point of the well-formed UTF-8 character of n bytes at text[i].
+char32_t code_point(const std::string& text, std::size_t i, std::size_t n) {
+  const auto byte = [&](std::size_t k) {
+    return static_cast<char32_t>(static_cast<unsigned char>(text[k]));
+  };
+  char32_t c = byte(i) & (n == 1 ? 0x7fu : n == 2 ? 0x1fu : n == 3 ? 0x0fu : 0x07u);
+  for (std::size_t k = 1; k < n; ++k)
+    c = (c << 6) | (byte(i + k) & 0x3fu);
+  return c;
+}
+
+// Characters that show nothing or change how the text around them is shown: zero-width
+// characters and joiners, bidirectional marks, embeddings, overrides and isolates (U+202E turns
+// what follows around), line and paragraph separators (a line break to a terminal), the
+// invisible operators, an in-text byte order mark, the interlinear annotation controls, and the
+// noncharacters U+FFFE and U+FFFF.
+bool invisible(char32_t c) {
+  return (c >= 0x200bu && c <= 0x200fu) || (c >= 0x2028u && c <= 0x202eu) ||
+         (c >= 0x2060u && c <= 0x206fu) || c == 0xfeffu || (c >= 0xfff9u && c <= 0xfffbu) ||
+         c == 0xfffeu || c == 0xffffu;
+}
+
 // Whether text[i] starts no character a message may show: a byte that starts no well-formed
-// UTF-8 character, a C0 control or DEL, or a C1 control (U+0080-U+009F, which some terminals
-// obey as escapes).
+// UTF-8 character, a C0 control or DEL, a C1 control (U+0080-U+009F, which some terminals obey
+// as escapes), or a character that is invisible or reorders the text (invisible()).
 bool unshown(const std::string& text, std::size_t i, std::size_t n) {
   if (n == 0) return true;
   if (n == 1) return control(static_cast<unsigned char>(text[i]));
-  return n == 2 && static_cast<unsigned char>(text[i]) == 0xc2u &&
-         static_cast<unsigned char>(text[i + 1]) < 0xa0u;
+  const char32_t c = code_point(text, i, n);
+  return (c >= 0x80u && c <= 0x9fu) || invisible(c);
 }
 
 }  // namespace
@@ -50,7 +74,7 @@ std::string text_problem(const std::string& text) {
       constexpr char kHex[] = "0123456789abcdef";
       const auto c = static_cast<unsigned char>(text[i]);
       return std::string("holds the byte 0x") + kHex[c >> 4] + kHex[c & 15u] + " at offset " +
-             std::to_string(i) + " (text here is UTF-8 without control characters)";
+             std::to_string(i) + " (text here is UTF-8 without control or invisible characters)";
     }
     i += n;
   }

@@ -356,4 +356,54 @@ TEST(CliFaults, AReferenceNotAmongTheEnginesIsNoted) {
   EXPECT_EQ(among.out.find("runs too"), std::string::npos) << among.out;
 }
 
+// Fields of a CSV line as RFC 4180 reads them (quoted fields, quotes doubled), -1 when a quote is
+// left open.
+int csv_fields(const std::string& line) {
+  int fields = 1;
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    if (line[i] == '"') {
+      if (quoted && i + 1 < line.size() && line[i + 1] == '"') {
+        ++i;
+      } else {
+        quoted = !quoted;
+      }
+    } else if (line[i] == ',' && !quoted) {
+      ++fields;
+    }
+  }
+  return quoted ? -1 : fields;
+}
+
+// A scene named with commas and quotes keeps every CSV row as wide as its header, in run and sweep.
+TEST(CliFaults, NamesWithCommasAndQuotesKeepTheCsvColumns) {
+  const std::string dir = folder("csv_names");
+  nlohmann::json scene = nlohmann::json::parse(
+      read(std::string(CHAINBENCH_TEST_SCENES) + "/verdicts/push_train.json"));
+  scene["name"] = "a\",b,c\"d";
+  write(dir + "s.json", scene.dump());
+  const std::string calls[] = {
+      "run --scene-file " + dir + "s.json --engines chain --reference none --csv " + dir +
+          "run.csv",
+      "sweep --scene-file " + dir + "s.json --grid chain:passes=1,2 --csv " + dir + "sweep.csv"};
+  for (const std::string& call : calls) {
+    SCOPED_TRACE(call);
+    ASSERT_EQ(chainbench(call).status, 0);
+  }
+  for (const std::string name : {"run.csv", "sweep.csv"}) {
+    SCOPED_TRACE(name);
+    std::istringstream csv(read(dir + name));
+    std::string header, row;
+    ASSERT_TRUE(std::getline(csv, header));
+    int rows = 0;
+    while (std::getline(csv, row)) {
+      if (row.empty() || row[0] == '#') continue;
+      ++rows;
+      EXPECT_EQ(csv_fields(row), csv_fields(header)) << row;
+      EXPECT_EQ(row.rfind("\"a\"\",b,c\"\"d\",", 0), 0u) << row;
+    }
+    EXPECT_GT(rows, 0);
+  }
+}
+
 }  // namespace

@@ -150,4 +150,19 @@ TEST(CliIsolated, AStepErrorIsAnErrorRowInRunAndSweep) {
   }
 }
 
+// In stress too, a plugin that crashed, hung or failed a case fails the command (1), as in run and
+// sweep, though the exit status otherwise judges only the engine that gates the build.
+TEST(CliIsolated, APluginFaultInStressFailsTheCommand) {
+  for (const auto& [fault, verdict] :
+       {std::pair{"crash", "crash"}, std::pair{"step", "error"}, std::pair{"hang", "hang"}}) {
+    SCOPED_TRACE(fault);
+    const Result r = chainbench("stress --quick --filter ledge_walk --timeout 2 --engines chain," +
+                                plugin(fault));
+    EXPECT_EQ(r.status, 1) << r.out;
+    EXPECT_NE(r.out.find(verdict), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("crashed, hung or failed on 1 stress case(s)"), std::string::npos)
+        << r.out;
+  }
+}
+
 }  // namespace

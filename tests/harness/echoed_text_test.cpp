@@ -54,5 +54,25 @@ TEST(EchoedText, EngineSpecsMustBeUtf8TextAndEchoTheirPartsCut) {
   }
 }
 
+// Characters that show nothing or turn the text around them are shown as bytes and refused, as
+// control characters are: a name holding U+202E would print its tail reversed.
+TEST(EchoedText, InvisibleAndReorderingCharactersAreShownAsHexAndRefused) {
+  for (const std::string c :
+       {"\u200b", "\u200f", "\u2028", "\u2029", "\u202e", "\u2066", "\ufeff", "\ufff9", "\uffff"}) {
+    SCOPED_TRACE(cut_for_message(c));
+    const std::string text = "ok" + c + "x";
+    EXPECT_EQ(cut_for_message(text).find(c), std::string::npos) << cut_for_message(text);
+    EXPECT_EQ(cut_for_message(text).rfind("ok\\x", 0), 0u) << cut_for_message(text);
+    EXPECT_NE(text_problem(text).find("at offset 2"), std::string::npos) << text_problem(text);
+  }
+  // Visible neighbours stay text: a non-breaking space, an em dash, U+2030, U+FFFD.
+  for (const std::string c : {"\u00a0", "\u2014", "\u2030", "\ufffd", "\u2027"})
+    EXPECT_EQ(text_problem("ok" + c), "") << cut_for_message(c);
+  // Surrogates and code points above U+10FFFF are not UTF-8.
+  EXPECT_NE(text_problem("\xed\xa0\x80").find("0xed at offset 0"), std::string::npos);
+  EXPECT_NE(text_problem("\xf4\x90\x80\x80").find("0xf4 at offset 0"), std::string::npos);
+  EXPECT_EQ(text_problem("\xf4\x8f\xbf\xbd"), "");  // U+10FFFD
+}
+
 }  // namespace
 }  // namespace chainbench

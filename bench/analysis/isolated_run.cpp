@@ -142,7 +142,7 @@ Metrics read_metrics(Reader& r) {
 }
 
 // Every field of ExpectResult, in declaration order (EngineRun's operator== and the round-trip
-// test in tests/harness/plugin_test.cpp catch one left out).
+// test in tests/harness/isolated_run_test.cpp catch one left out).
 void write_expect(Writer& w, const ExpectResult& e) {
   w.pod(e.max_error), w.pod(e.max_speed_error);
   w.pod(e.pass), w.pod(e.position_pass), w.pod(e.speed_pass);

@@ -278,9 +278,9 @@ void MetricsRecorder::observe_still(const BodyState& after, int step, bool displ
 
 void MetricsRecorder::visit(const BodyState& before, const BodyState& after, std::size_t i,
                             std::size_t j, int step) {
-  // A body out of the world overlaps nothing; one that entered in the step passed through
-  // nothing in it (it was not in the state before).
-  if (!present(i) || !present(j)) return;
+  // A body out of the world overlaps nothing (meet: both in this state, and not the one leaving
+  // and the one entering in its place); one that entered in the step passed through nothing in
+  // it (it was not in the state before).
   if (lives_ && !meet(scene_.bodies[i], scene_.bodies[j], step)) return;
   if (sel_.stability && stepped(i) && stepped(j)) tunnels_.check(before, after, i, j, step);
   const double d = scan().depth(after, i, j);

@@ -92,18 +92,15 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
   const auto engine = make_engine(spec, scene);
   // Bodies that come and go (spawn_rain) are added and removed in the timed step, as in `run`.
   const Lifetimes lives(scene);
-  // The bodies in the world: those that take part in a step (in the states before and after it).
-  // Counted outside the timing.
-  Presence presence(scene);
   int step = 0;
   for (; step < family.warmup; ++step) {
     lives.apply(*engine, step);
     engine->step(step);
   }
   const double held = heap_in_use() - heap_before;
-  presence.at(step);
-  const auto built = static_cast<double>(presence.count());  // in the world after the warm-up
-  double body_steps = 0.0;
+  Presence at_warmup(scene);
+  at_warmup.at(step);
+  const auto built = static_cast<double>(at_warmup.count());  // in the world after the warm-up
   CounterTotals counted(*engine);
   double degraded = 0.0;
   std::vector<double> step_ms;
@@ -116,8 +113,6 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
     const std::chrono::duration<double> took = Clock::now() - t0;
     state.SetIterationTime(took.count());
     step_ms.push_back(1e3 * took.count());
-    presence.at(step);
-    body_steps += static_cast<double>(presence.stepped_count());  // in the world for the step
     degraded += engine->degraded();
     // A moving scene: count every timed step, outside the time measured.
     if (family.window > 0) counted.add(*engine);
@@ -125,11 +120,12 @@ void step_benchmark(benchmark::State& state, const Family& family, const EngineS
   const auto iterations = static_cast<double>(state.iterations());
   // Bodies in the world, on average over the timed steps: every body of the scene, except where
   // bodies come and go (spawn_rain), whose scene lists every body that ever enters.
-  const double bodies = iterations > 0.0 ? body_steps / iterations : built;
+  const double bodies =
+      iterations > 0.0 ? mean_in_world(scene, family.warmup, state.iterations()) : built;
   state.counters["bodies"] = bodies;
   // Seconds per body in the world per step (shown as ns); in JSON, seconds.
-  state.counters["per_body"] =
-      benchmark::Counter(body_steps, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["per_body"] = benchmark::Counter(
+      bodies * iterations, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["degraded"] = degraded / iterations;
   state.counters["bytes_per_body"] = held / built;
   // The median step and the slowest, ms: a mean hides the frame that misses a game's budget.

@@ -20,7 +20,6 @@
 #include <chainbench/engine_plugin.h>
 
 #include <dlfcn.h>
-#include <string.h>
 
 #include <algorithm>
 #include <climits>
@@ -61,9 +60,6 @@ Plugin load_checked(const std::string& path) {
   return check_table(api, path);
 }
 
-// The load tried first in a child process (child_process.h): a library whose constructor, entry
-// function or table crashes, exits or hangs is refused by name (InputError) instead of taking
-// chainbench down. A refusal of its table comes back with its own message.
 // A stand-in table for a library kept after its probe failed: every capability, no counters and
 // no keys, and functions never called (make loads the library itself, in a child process).
 const cb_engine* stand_in_table() {
@@ -80,6 +76,15 @@ const cb_engine* stand_in_table() {
 bool g_keep_failed_loads = false;
 std::vector<std::string> g_failed_loads;
 
+// A library that crashed, exited or hung while it was loaded in its probe: refused as bad input,
+// or kept for stress (keep_plugins_that_fail_to_load).
+struct LoadFailure : InputError {
+  using InputError::InputError;
+};
+
+// The load tried first in a child process (child_process.h): a library whose constructor, entry
+// function or table crashes, exits or hangs is refused by name (LoadFailure) instead of taking
+// chainbench down. A refusal of its table comes back with its own message (InputError).
 void probe_load(const std::string& path) {
   const std::string where = "plugin " + path;
   std::string bytes;
@@ -98,16 +103,15 @@ void probe_load(const std::string& path) {
     return;
   }
   if (o.hang) {
-    throw InputError(where + ": hung while loading (no table within " +
-                     std::to_string(static_cast<int>(kProbeTimeout)) + " s)");
+    throw LoadFailure(where + ": hung while loading (no table within " +
+                      std::to_string(static_cast<int>(kProbeTimeout)) + " s)");
   }
   if (o.signal != 0) {
-    const char* name = sigabbrev_np(o.signal);
-    throw InputError(where + ": crashed while loading: signal " + std::to_string(o.signal) +
-                     (name ? std::string(" (SIG") + name + ")" : std::string()) +
-                     (o.out_of_memory ? ", out of memory" : ""));
+    throw LoadFailure(where + ": crashed while loading: " + signal_text(o.signal) +
+                      (o.out_of_memory ? ", out of memory" : ""));
   }
-  throw InputError(where + ": exited while loading (status " + std::to_string(o.exit_status) + ")");
+  throw LoadFailure(where + ": exited while loading (status " + std::to_string(o.exit_status) +
+                    ")");
 }
 
 Plugin open_plugin(const std::string& path) {
@@ -118,9 +122,9 @@ Plugin open_plugin(const std::string& path) {
     throw InputError(where + ": is a directory, not a shared library");
   try {
     probe_load(path);
-  } catch (const InputError& e) {
+  } catch (const LoadFailure& e) {
     const std::string why = e.what();
-    if (!g_keep_failed_loads || why.find(" while loading") == std::string::npos) throw;
+    if (!g_keep_failed_loads) throw;
     g_failed_loads.push_back(why);
     Plugin p;
     p.path = path;

@@ -237,6 +237,12 @@ ChildOutcome run_in_child_bytes(const std::function<std::string()>& work, std::s
   return outcome;
 }
 
+std::string signal_text(int signal) {
+  const char* name = sigabbrev_np(signal);
+  return "signal " + std::to_string(signal) +
+         (name ? std::string(" (SIG") + name + ")" : std::string());
+}
+
 std::string child_failure(const ChildOutcome& o, double timeout_s, const std::string& where) {
   std::string why;
   if (o.hang) {
@@ -246,9 +252,7 @@ std::string child_failure(const ChildOutcome& o, double timeout_s, const std::st
   } else if (o.interrupted) {
     return "interrupted";
   } else if (o.signal != 0) {
-    const char* name = sigabbrev_np(o.signal);
-    why = "died of signal " + std::to_string(o.signal) +
-          (name ? std::string(" (SIG") + name + ")" : std::string());
+    why = "died of " + signal_text(o.signal);
   } else {
     why = "exited with status " + std::to_string(o.exit_status) + " and no result";
   }

@@ -50,6 +50,9 @@ bool under_sanitizer();
 // step a run has reached, say, so that a crash can say where. Null outside such a child.
 std::atomic<int>* child_mark();
 
+// "signal 11 (SIGSEGV)": a signal by number and name, as every message about a child gives it.
+std::string signal_text(int signal);
+
 // A human-readable reason for an outcome that did not finish, with `where` (" at step 3") after
 // what happened: "died of signal 11 (SIGSEGV)",
 // "ran out of time (60 s)", "exited with status 0 and no result", with ": out of memory (its cap is

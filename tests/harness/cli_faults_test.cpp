@@ -2,6 +2,7 @@
 // replace an input, Ctrl-C, a standard output that cannot be written, and plugins that crash,
 // abort, hang or exit in the middle of a run.
 #include "cli_run.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -30,17 +31,7 @@ using cli::Result;
 
 // A folder of this test's own, emptied.
 std::string folder(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("chainbench_faults_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string() + "/";
-}
-
-std::string read(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return chainbench::test::fresh_folder("chainbench_faults_" + name);
 }
 
 void write(const std::string& path, const std::string& text) {
@@ -93,7 +84,7 @@ bool wait_for(const std::string& path) {
 bool runs_with(const std::string& mark) {
   const std::string entry = "CHAINBENCH_TEST_HANG_MARK=" + mark;
   for (const auto& e : fs::directory_iterator("/proc")) {
-    const std::string environ = read(e.path().string() + "/environ");
+    const std::string environ = chainbench::test::read_file(e.path().string() + "/environ");
     if (environ.find(entry) != std::string::npos) return true;
   }
   return false;
@@ -135,7 +126,7 @@ TEST(CliFaults, AKilledRunLeavesThePreviousOutputAndNoTemporary) {
   ASSERT_TRUE(wait_for(dir + "mark"));
   kill(pid, SIGTERM);
   EXPECT_EQ(finish(pid), 128 + SIGTERM);
-  EXPECT_EQ(read(dir + "out.json"), "previous");
+  EXPECT_EQ(chainbench::test::read_file(dir + "out.json"), "previous");
   EXPECT_EQ(leftovers(dir, {"out.json", "log", "mark"}), std::vector<std::string>{});
   EXPECT_TRUE(gone(dir + "mark")) << "the hung plugin's process outlived the command";
 }
@@ -150,13 +141,14 @@ TEST(CliFaults, CtrlCInRunKeepsTheEnginesThatFinished) {
                           dir + "log", dir + "mark");
   ASSERT_TRUE(wait_for(dir + "mark"));
   kill(pid, SIGINT);
-  EXPECT_EQ(finish(pid), 130) << read(dir + "log");
-  const nlohmann::json j = nlohmann::json::parse(read(dir + "out.json"));
+  EXPECT_EQ(finish(pid), 130) << chainbench::test::read_file(dir + "log");
+  const nlohmann::json j = nlohmann::json::parse(chainbench::test::read_file(dir + "out.json"));
   EXPECT_TRUE(j["interrupted"].get<bool>());
   ASSERT_EQ(j["runs"].size(), 1u);
   EXPECT_EQ(j["runs"][0]["label"], "chain");
-  EXPECT_NE(read(dir + "out.csv").find("chain:variant=modern"), std::string::npos);
-  EXPECT_NE(read(dir + "log").find("interrupted"), std::string::npos);
+  EXPECT_NE(chainbench::test::read_file(dir + "out.csv").find("chain:variant=modern"),
+            std::string::npos);
+  EXPECT_NE(chainbench::test::read_file(dir + "log").find("interrupted"), std::string::npos);
   EXPECT_EQ(leftovers(dir, {"out.json", "out.csv", "log", "mark"}), std::vector<std::string>{});
 }
 
@@ -170,8 +162,8 @@ TEST(CliFaults, CtrlCInRunWritesOnlyFinishedEnginesToTraceAndReplay) {
                           dir + "log", dir + "mark");
   ASSERT_TRUE(wait_for(dir + "mark"));
   kill(pid, SIGINT);
-  EXPECT_EQ(finish(pid), 130) << read(dir + "log");
-  std::istringstream trace(read(dir + "t.csv"));
+  EXPECT_EQ(finish(pid), 130) << chainbench::test::read_file(dir + "log");
+  std::istringstream trace(chainbench::test::read_file(dir + "t.csv"));
   std::string line;
   std::size_t rows = 0;
   std::getline(trace, line);  // the header
@@ -181,7 +173,7 @@ TEST(CliFaults, CtrlCInRunWritesOnlyFinishedEnginesToTraceAndReplay) {
     EXPECT_EQ(line.rfind("chain,", 0), 0u) << line;
   }
   EXPECT_GT(rows, 0u);
-  const std::string page = read(dir + "r.html");
+  const std::string page = chainbench::test::read_file(dir + "r.html");
   EXPECT_NE(page.find("\"interrupted\":true"), std::string::npos);
   EXPECT_EQ(leftovers(dir, {"t.csv", "r.html", "log", "mark"}), std::vector<std::string>{});
 }
@@ -199,10 +191,11 @@ TEST(CliFaults, CtrlCBeforeAnythingFinishedLeavesThePreviousOutputs) {
                           dir + "log", dir + "mark");
   ASSERT_TRUE(wait_for(dir + "mark"));
   kill(run, SIGINT);
-  EXPECT_EQ(finish(run), 130) << read(dir + "log");
-  EXPECT_NE(read(dir + "log").find("no engine finished, so the outputs are left as they were"),
+  EXPECT_EQ(finish(run), 130) << chainbench::test::read_file(dir + "log");
+  EXPECT_NE(chainbench::test::read_file(dir + "log")
+                .find("no engine finished, so the outputs are left as they were"),
             std::string::npos)
-      << read(dir + "log");
+      << chainbench::test::read_file(dir + "log");
   fs::remove(dir + "mark");
   const pid_t sweep =
       start({"sweep", "--scene", "stack", "--set", "n=2", "--set", "steps=60", "--grid",
@@ -210,16 +203,16 @@ TEST(CliFaults, CtrlCBeforeAnythingFinishedLeavesThePreviousOutputs) {
             dir + "log", dir + "mark");
   ASSERT_TRUE(wait_for(dir + "mark"));
   kill(sweep, SIGINT);
-  EXPECT_EQ(finish(sweep), 130) << read(dir + "log");
+  EXPECT_EQ(finish(sweep), 130) << chainbench::test::read_file(dir + "log");
   fs::remove(dir + "mark");
   const pid_t stress = start({"stress", "--quick", "--filter", "size=0.01", "--engines",
                               plugin("hang"), "--json", dir + "s.json"},
                              dir + "log", dir + "mark");
   ASSERT_TRUE(wait_for(dir + "mark"));
   kill(stress, SIGINT);
-  EXPECT_EQ(finish(stress), 130) << read(dir + "log");
+  EXPECT_EQ(finish(stress), 130) << chainbench::test::read_file(dir + "log");
   for (const std::string& name : outputs)
-    EXPECT_EQ(read(dir + name), "previous " + name);
+    EXPECT_EQ(chainbench::test::read_file(dir + name), "previous " + name);
   std::vector<std::string> keep = outputs;
   keep.insert(keep.end(), {"log", "mark"});
   EXPECT_EQ(leftovers(dir, keep), std::vector<std::string>{});
@@ -233,8 +226,8 @@ TEST(CliFaults, CtrlCInStressKeepsTheRunsThatFinished) {
                           dir + "log", dir + "mark");
   ASSERT_TRUE(wait_for(dir + "mark"));
   kill(pid, SIGINT);
-  EXPECT_EQ(finish(pid), 130) << read(dir + "log");
-  const nlohmann::json j = nlohmann::json::parse(read(dir + "s.json"));
+  EXPECT_EQ(finish(pid), 130) << chainbench::test::read_file(dir + "log");
+  const nlohmann::json j = nlohmann::json::parse(chainbench::test::read_file(dir + "s.json"));
   EXPECT_TRUE(j["interrupted"].get<bool>());
   ASSERT_EQ(j["cases"].size(), 1u);
   EXPECT_EQ(j["cases"][0]["label"], "chain");
@@ -243,7 +236,8 @@ TEST(CliFaults, CtrlCInStressKeepsTheRunsThatFinished) {
 // An output that names an input is refused before anything runs, however it is spelled.
 TEST(CliFaults, AnOutputThatNamesAnInputIsRefused) {
   const std::string dir = folder("overwrite");
-  const std::string scene = read(std::string(CHAINBENCH_TEST_SCENES) + "/verdicts/push_train.json");
+  const std::string scene = chainbench::test::read_file(std::string(CHAINBENCH_TEST_SCENES) +
+                                                        "/verdicts/push_train.json");
   write(dir + "s.json", scene);
   fs::create_symlink(dir + "s.json", dir + "link.json");
   for (const std::string& out : {dir + "s.json", dir + "./s.json", dir + "link.json"}) {
@@ -253,24 +247,24 @@ TEST(CliFaults, AnOutputThatNamesAnInputIsRefused) {
     EXPECT_NE(r.out.find("--json " + out + " is the input --scene-file " + dir + "s.json"),
               std::string::npos)
         << r.out;
-    EXPECT_EQ(read(dir + "s.json"), scene);
+    EXPECT_EQ(chainbench::test::read_file(dir + "s.json"), scene);
   }
   const Result sweep = chainbench("sweep --scene-file " + dir +
                                   "s.json --grid chain:passes=1 --csv " + dir + "link.json");
   EXPECT_EQ(sweep.status, 2) << sweep.out;
-  EXPECT_EQ(read(dir + "s.json"), scene);
+  EXPECT_EQ(chainbench::test::read_file(dir + "s.json"), scene);
 
   const std::string p1 = dir + "p1.json", p2 = dir + "p2.json";
   ASSERT_EQ(
       chainbench("sweep --scene stack --grid chain:passes=1,2 --shard 1/2 --json " + p1).status, 0);
   ASSERT_EQ(
       chainbench("sweep --scene stack --grid chain:passes=1,2 --shard 2/2 --json " + p2).status, 0);
-  const std::string part = read(p1);
+  const std::string part = chainbench::test::read_file(p1);
   const Result merge = chainbench("merge " + p1 + " " + p2 + " --json " + p1);
   EXPECT_EQ(merge.status, 2) << merge.out;
   EXPECT_NE(merge.out.find("--json " + p1 + " is the input part " + p1), std::string::npos)
       << merge.out;
-  EXPECT_EQ(read(p1), part);
+  EXPECT_EQ(chainbench::test::read_file(p1), part);
   EXPECT_EQ(chainbench("merge " + p1 + " " + p2 + " --json " + dir + "whole.json").status, 0);
 
   // A plugin's library is an input too: no output may replace it (here through a symlink).
@@ -278,7 +272,7 @@ TEST(CliFaults, AnOutputThatNamesAnInputIsRefused) {
   const std::string lib = dir + "p.so", lib_link = dir + "p_link.so";
   fs::copy_file(none, lib);
   fs::create_symlink(lib, lib_link);
-  const std::string library = read(lib);
+  const std::string library = chainbench::test::read_file(lib);
   for (const std::string& call :
        {"run --scene stack --reference none --engines chain,plugin:path=" + lib + " --json " +
             lib_link,
@@ -289,7 +283,7 @@ TEST(CliFaults, AnOutputThatNamesAnInputIsRefused) {
     const Result r = chainbench(call);
     EXPECT_EQ(r.status, 2) << r.out;
     EXPECT_NE(r.out.find("is the input --engines"), std::string::npos) << r.out;
-    EXPECT_EQ(read(lib), library);
+    EXPECT_EQ(chainbench::test::read_file(lib), library);
   }
 }
 
@@ -313,7 +307,7 @@ TEST(CliFaults, APluginThatDiesIsItsRowNotTheEndOfTheRun) {
     const Result r = chainbench("run " + kScene + engines + " --timeout " + c.timeout + " --json " +
                                 dir + "out.json --csv " + dir + "out.csv");
     EXPECT_EQ(r.status, 1) << r.out;
-    const nlohmann::json j = nlohmann::json::parse(read(dir + "out.json"));
+    const nlohmann::json j = nlohmann::json::parse(chainbench::test::read_file(dir + "out.json"));
     ASSERT_EQ(j["runs"].size(), 2u);
     EXPECT_EQ(j["runs"][0]["label"], "chain");
     EXPECT_EQ(j["runs"][0]["final_positions"].size(), 3u);  // the ground and two boxes
@@ -334,7 +328,7 @@ TEST(CliFaults, APluginThatDiesIsItsRowNotTheEndOfTheRun) {
         chainbench("sweep " + kScene + " --timeout " + c.timeout + " --grid chain:passes=1 " +
                    "--grid " + plugin(c.fault) + " --json " + dir + "sweep.json");
     EXPECT_EQ(sweep.status, 1) << sweep.out;
-    const nlohmann::json s = nlohmann::json::parse(read(dir + "sweep.json"));
+    const nlohmann::json s = nlohmann::json::parse(chainbench::test::read_file(dir + "sweep.json"));
     const auto& points = s["scenes"][0]["points"];
     ASSERT_EQ(points.size(), 2u) << s;
     EXPECT_EQ(points[0]["verdict"], "ok");
@@ -378,8 +372,8 @@ int csv_fields(const std::string& line) {
 // A scene named with commas and quotes keeps every CSV row as wide as its header, in run and sweep.
 TEST(CliFaults, NamesWithCommasAndQuotesKeepTheCsvColumns) {
   const std::string dir = folder("csv_names");
-  nlohmann::json scene = nlohmann::json::parse(
-      read(std::string(CHAINBENCH_TEST_SCENES) + "/verdicts/push_train.json"));
+  nlohmann::json scene = nlohmann::json::parse(chainbench::test::read_file(
+      std::string(CHAINBENCH_TEST_SCENES) + "/verdicts/push_train.json"));
   scene["name"] = "a\",b,c\"d";
   write(dir + "s.json", scene.dump());
   const std::string calls[] = {
@@ -392,7 +386,7 @@ TEST(CliFaults, NamesWithCommasAndQuotesKeepTheCsvColumns) {
   }
   for (const std::string name : {"run.csv", "sweep.csv"}) {
     SCOPED_TRACE(name);
-    std::istringstream csv(read(dir + name));
+    std::istringstream csv(chainbench::test::read_file(dir + name));
     std::string header, row;
     ASSERT_TRUE(std::getline(csv, header));
     int rows = 0;

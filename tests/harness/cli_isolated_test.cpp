@@ -3,6 +3,7 @@
 // descriptors, memory without end, a library that dies while it is loaded, and a step that fails.
 #include "child_process.h"
 #include "cli_run.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -28,18 +29,9 @@ using Clock = std::chrono::steady_clock;
 
 const std::string kScene = "--scene stack --set n=2 --set steps=60";
 
+// A folder of this test's own, emptied.
 std::string folder(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("chainbench_isolated_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string() + "/";
-}
-
-std::string read(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return chainbench::test::fresh_folder("chainbench_isolated_" + name);
 }
 
 std::string plugin(const std::string& fault) {
@@ -76,13 +68,13 @@ TEST(CliIsolated, APluginCannotWriteIntoAnOutput) {
                               plugin("forge") + " --json " + dir + "out.json --csv " + dir +
                               "out.csv --trace " + dir + "out.trace");
   EXPECT_EQ(r.status, 1) << r.out;
-  const std::string json = read(dir + "out.json");
+  const std::string json = chainbench::test::read_file(dir + "out.json");
   ASSERT_FALSE(json.empty());
   EXPECT_EQ(json.front(), '{');
   EXPECT_EQ(json.find("AAAA"), std::string::npos);
   EXPECT_TRUE(nlohmann::json::accept(json));
-  EXPECT_EQ(read(dir + "out.csv").find("AAAA"), std::string::npos);
-  EXPECT_EQ(read(dir + "out.trace").find("AAAA"), std::string::npos);
+  EXPECT_EQ(chainbench::test::read_file(dir + "out.csv").find("AAAA"), std::string::npos);
+  EXPECT_EQ(chainbench::test::read_file(dir + "out.trace").find("AAAA"), std::string::npos);
 }
 
 // Memory without end is that plugin's crash, said to be out of memory, not a hang. (Not under
@@ -118,7 +110,8 @@ TEST(CliIsolated, APluginThatDiesWhileLoadingIsNamed) {
                                 plugin(fault) + " --json " + dir + "stress.json");
     EXPECT_EQ(r.status, 1) << r.out;
     EXPECT_NE(r.out.find(said + " (its rows say crash"), std::string::npos) << r.out;
-    const nlohmann::json j = nlohmann::json::parse(read(dir + "stress.json"));
+    const nlohmann::json j =
+        nlohmann::json::parse(chainbench::test::read_file(dir + "stress.json"));
     ASSERT_EQ(j["cases"].size(), 2u) << j;
     EXPECT_NE(j["cases"][0]["verdict"], "crash") << j;
     EXPECT_EQ(j["cases"][1]["verdict"], "crash") << j;
@@ -134,7 +127,7 @@ TEST(CliIsolated, AStepErrorIsAnErrorRowInRunAndSweep) {
     const Result r = chainbench("run " + kScene + " --reference none --engines chain," +
                                 plugin(fault) + " --json " + dir + "out.json");
     EXPECT_EQ(r.status, 1) << r.out;
-    const nlohmann::json j = nlohmann::json::parse(read(dir + "out.json"));
+    const nlohmann::json j = nlohmann::json::parse(chainbench::test::read_file(dir + "out.json"));
     ASSERT_EQ(j["runs"].size(), 2u);
     EXPECT_EQ(j["runs"][0]["final_positions"].size(), 3u);
     EXPECT_EQ(j["runs"][1]["verdict"]["class"], "error");
@@ -142,7 +135,8 @@ TEST(CliIsolated, AStepErrorIsAnErrorRowInRunAndSweep) {
     const Result s = chainbench("sweep " + kScene + " --grid chain:passes=1 --grid " +
                                 plugin(fault) + " --json " + dir + "sweep.json");
     EXPECT_EQ(s.status, 1) << s.out;
-    const nlohmann::json sj = nlohmann::json::parse(read(dir + "sweep.json"));
+    const nlohmann::json sj =
+        nlohmann::json::parse(chainbench::test::read_file(dir + "sweep.json"));
     const auto& points = sj["scenes"][0]["points"];
     ASSERT_EQ(points.size(), 2u) << sj;
     EXPECT_EQ(points[0]["verdict"], "ok");

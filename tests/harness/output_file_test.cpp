@@ -2,6 +2,7 @@
 // its mode and its symbolic link, and no temporary outlives its output.
 #include "output_file.h"
 #include "input_error.h"
+#include "test_files.h"
 
 #include <gtest/gtest.h>
 
@@ -17,18 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A folder of this test's own, emptied.
 std::string folder(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("chainbench_output_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string() + "/";
-}
-
-std::string read(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return test::fresh_folder("chainbench_output_" + name);
 }
 
 std::size_t files_in(const std::string& dir) {
@@ -43,9 +35,9 @@ TEST(OutputFile, AnOutputNotCommittedLeavesThePreviousFileAndNoTemporary) {
     const auto out = open_output(dir + "out.json", "--json");
     out->stream() << "half of a new fi";
     EXPECT_EQ(files_in(dir), 2u);  // the target and its temporary
-    EXPECT_EQ(read(dir + "out.json"), "previous");
+    EXPECT_EQ(test::read_file(dir + "out.json"), "previous");
   }  // an error unwinds past it
-  EXPECT_EQ(read(dir + "out.json"), "previous");
+  EXPECT_EQ(test::read_file(dir + "out.json"), "previous");
   EXPECT_EQ(files_in(dir), 1u);
 }
 
@@ -60,8 +52,8 @@ TEST(OutputFile, ACommittedOutputReplacesItsTargetKeepingModeAndLink) {
   fresh->stream() << "fresh";
   commit_outputs({out.get(), fresh.get()});
   EXPECT_TRUE(fs::is_symlink(dir + "link.csv"));
-  EXPECT_EQ(read(dir + "real.csv"), "new");
-  EXPECT_EQ(read(dir + "new.csv"), "fresh");
+  EXPECT_EQ(test::read_file(dir + "real.csv"), "new");
+  EXPECT_EQ(test::read_file(dir + "new.csv"), "fresh");
   EXPECT_EQ(fs::status(dir + "real.csv").permissions() & fs::perms::all, fs::perms(0640));
   EXPECT_EQ(files_in(dir), 3u);
 }
@@ -79,7 +71,7 @@ TEST(OutputFile, CutBackDropsWhatWasWrittenAfterAMark) {
   EXPECT_EQ(out->written(), kept);
   out->stream() << "# end\n";
   commit_outputs({out.get()});
-  EXPECT_EQ(read(dir + "t.csv"), "header\nfinished,1\n# end\n");
+  EXPECT_EQ(test::read_file(dir + "t.csv"), "header\nfinished,1\n# end\n");
   // Written directly, nothing can be taken back: the caller is told.
   const auto device = open_output("/dev/null", "--trace");
   EXPECT_EQ(device->written(), -1);

@@ -113,8 +113,14 @@ void Box2dWorld::step(int step_index) {
     body->SetAwake(true);
   }
   const auto h = static_cast<float>(dt_ / settings_.substeps);
-  for (int k = 0; k < settings_.substeps; ++k)
+  profile_ = Profile{};
+  for (int k = 0; k < settings_.substeps; ++k) {
     world_->Step(h, settings_.velocity_iterations, settings_.position_iterations);
+    const b2Profile& p = world_->GetProfile();
+    profile_.collide += p.collide;
+    profile_.solve += p.solve;
+    profile_.solve_toi += p.solveTOI;
+  }
 }
 
 std::size_t Box2dWorld::touching_contacts() const {

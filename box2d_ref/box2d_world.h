@@ -48,6 +48,14 @@ class Box2dWorld {
   // Applies the drives the scene holds at step `step_index` (DriveSchedule), then advances by the
   // scene's dt.
   void step(int step_index);
+  // Box2D's own timing of the last scene step (b2Profile), its world steps summed: its top-level
+  // stages, milliseconds.
+  struct Profile {
+    double collide = 0.0;    // contacts updated (narrow phase)
+    double solve = 0.0;      // islands solved, new pairs found (broad phase)
+    double solve_toi = 0.0;  // continuous collision
+  };
+  const Profile& last_profile() const { return profile_; }
   // Contacts whose shapes touch after the last step.
   std::size_t touching_contacts() const;
   // Centres, velocities and angles in scene order; an empty span is skipped.
@@ -66,6 +74,7 @@ class Box2dWorld {
   DriveSchedule drives_;
   double dt_;
   Box2dSettings settings_;
+  Profile profile_;
 };
 
 }  // namespace chainbench

@@ -181,6 +181,9 @@ std::string write_run(const EngineRun& run, StepRecorder* steps) {
   for (const CounterDef& d : run.defs) {
     w.str(d.name), w.pod(d.aggregate), w.str(d.help), w.str(d.column);
   }
+  w.pod<std::uint64_t>(run.stages.size());
+  for (const StageMean& s : run.stages)
+    w.str(s.name), w.pod(s.ms);
   w.pod<std::uint64_t>(steps ? steps->steps() : 0);
   std::string out = w.take();
   if (steps) out += steps->take();
@@ -216,6 +219,13 @@ EngineRun read_run(const Scene& scene, const EngineSpec& spec, const std::string
     d.help = r.str();
     d.column = r.str();
     run.defs.push_back(std::move(d));
+  }
+  const auto stages = r.pod<std::uint64_t>();
+  for (std::uint64_t k = 0; k < stages; ++k) {
+    StageMean s;
+    s.name = r.str();
+    s.ms = r.pod<double>();
+    run.stages.push_back(std::move(s));
   }
   // The verdict follows from what came back, as in the child.
   run.verdict = judge(scene, run.metrics, run.expect, run.degraded_steps);

@@ -413,6 +413,12 @@ ordered_json run_json(const RunReport& r) {
                         {"max", run.timing.max_ms},       {"spread", run.timing.spread_ms},
                         {"samples", run.timing.samples}};
     e["setup_ms"] = run.timing.setup_ms;
+    if (!run.stages.empty()) {
+      ordered_json stages = ordered_json::object();
+      for (const StageMean& st : run.stages)
+        stages[st.name] = json_number(st.ms);
+      e["stages_ms"] = std::move(stages);
+    }
     ordered_json m;
     const Metrics& mt = run.metrics;
     if (mt.efd_total) {

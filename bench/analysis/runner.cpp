@@ -20,6 +20,39 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
+// Sums an engine's stage times over the timed steps (the first step's apart, as its time is).
+class StageSums {
+ public:
+  void first(std::span<const StageTime> stages) { first_.assign(stages.begin(), stages.end()); }
+  void add(std::span<const StageTime> stages) {
+    if (sums_.empty()) {
+      for (const StageTime& s : stages)
+        sums_.push_back({s.name, 0.0});
+    }
+    for (std::size_t i = 0; i < stages.size() && i < sums_.size(); ++i)
+      sums_[i].ms += stages[i].ms;
+    ++steps_;
+  }
+  // Means over the timed steps, or the first step's times when it was the only one.
+  std::vector<StageMean> means() const {
+    if (steps_ == 0) {
+      std::vector<StageMean> out;
+      for (const StageTime& s : first_)
+        out.push_back({s.name, s.ms});
+      return out;
+    }
+    std::vector<StageMean> out = sums_;
+    for (StageMean& s : out)
+      s.ms /= static_cast<double>(steps_);
+    return out;
+  }
+
+ private:
+  std::vector<StageTime> first_;
+  std::vector<StageMean> sums_;
+  int steps_ = 0;
+};
+
 }  // namespace
 
 Timing summarize_steps(std::vector<double> samples, double setup_ms) {
@@ -100,6 +133,8 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     o->begin(spec, counter_defs);
   std::vector<double> totals(counter_defs.size(), 0.0);
   int steps_taken = 0;
+  if (options.stages) engine->measure_stages();
+  StageSums stage_sums;
 
   std::vector<double> samples;
   samples.reserve(static_cast<std::size_t>(scene.steps));
@@ -122,8 +157,10 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     // run has no other (a cold figure says more than none).
     if (step > 0) {
       samples.push_back(ms);
+      stage_sums.add(engine->stages());
     } else {
       first_ms = ms;
+      stage_sums.first(engine->stages());
     }
     ++steps_taken;
     const bool degraded = engine->degraded();
@@ -174,6 +211,7 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
   run.final_state = steps_taken;
   run.hash = position_hash(run.final_positions);
   if (samples.empty() && steps_taken > 0) samples.push_back(first_ms);
+  run.stages = stage_sums.means();
   run.timing = summarize_steps(std::move(samples), setup_ms);
   if (metrics.any()) {
     run.metrics = recorder->result(last);

@@ -38,6 +38,13 @@ struct Timing {
   friend bool operator==(const Timing&, const Timing&) = default;
 };
 
+// One stage of an engine's step (Engine::stages) and its mean wall time over the timed steps.
+struct StageMean {
+  std::string name;
+  double ms = 0.0;
+  friend bool operator==(const StageMean&, const StageMean&) = default;
+};
+
 struct EngineRun {
   EngineSpec spec;
   std::string engine;  // spec.str(), the canonical spec
@@ -73,6 +80,9 @@ struct EngineRun {
   const std::vector<CounterDef>& counter_defs() const { return defs; }
 
   std::vector<CounterDef> defs;  // what the engine counts, in the order of `counters`
+  // The engine's own stage times (RunOptions::stages), over the same steps as `timing`; empty
+  // when not asked for or when the engine measures none.
+  std::vector<StageMean> stages;
 
   // Every field equal: a run carried from a child process (isolated_run.h) is the run itself.
   friend bool operator==(const EngineRun&, const EngineRun&) = default;
@@ -90,6 +100,8 @@ struct RunOptions {
   // process (isolated_run.h), killed after timeout_s seconds; built-in engines run in process.
   bool isolate = false;
   double timeout_s = HUGE_VAL;
+  // Ask the engine to time its step's stages (EngineRun::stages).
+  bool stages = false;
   // When set, holds the step under way (counted from 1, as verdicts count "at step N") from the
   // moment it starts; untouched before the first.
   std::atomic<int>* step_mark = nullptr;

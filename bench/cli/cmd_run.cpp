@@ -12,6 +12,7 @@
 #include "runner.h"
 #include "scene_file.h"
 #include "scene_library.h"
+#include "stage_table.h"
 #include "text_table.h"
 #include "trace_writer.h"
 #include "value_checks.h"
@@ -75,6 +76,7 @@ int run_scene(const RunArgs& a) {
   RunOptions options;
   options.metrics = parse_metric_selection(a.metrics);
   options.isolate = true;  // a plugin that dies is its row's crash, not the end of the run
+  options.stages = a.profile;
   if (a.timeout > 0.0) options.timeout_s = a.timeout;
   std::vector<EngineSpec> read = engines;
   if (reference) read.push_back(*reference);
@@ -162,6 +164,7 @@ int run_scene(const RunArgs& a) {
   compare(report);
 
   print_run_table(std::cout, report);
+  print_stage_table(std::cout, report);
   if (!note.empty()) std::cout << "\nnote: " << note << '\n';
   for (const std::string& left_out : choice.notes)
     std::cout << "note: " << left_out << '\n';
@@ -262,6 +265,9 @@ void add_run_command(CLI::App& app, int* status) {
   run_app->add_option("--require", args->require,
                       "engine spec that must meet every expectation with verdict ok, else exit "
                       "3 (repeatable)");
+  run_app->add_flag("--profile", args->profile,
+                    "after the table, each engine's step split into the stages it times itself "
+                    "(chain, box2d, box2d3; mean ms per step; also stages_ms in the JSON)");
   run_app->footer(
       "Exit status: 0 done; 2 bad input or usage; 3 a --require engine missed an expectation or "
       "was not ok; 1 a plugin crashed, hung or failed a step (its row says so; the other engines' "

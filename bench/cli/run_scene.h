@@ -22,6 +22,7 @@ struct RunArgs {
   const char* replay_mb_option = "--replay-mb";
   std::string metrics = "all";
   std::vector<std::string> require;
+  bool profile = false;  // print each engine's own timing of its step's stages
 };
 
 // Returns the exit status: 0; 3 when a --require engine fails; 1 when an engine run in a child

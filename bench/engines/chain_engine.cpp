@@ -168,6 +168,18 @@ class ChainEngine final : public Engine {
 
   bool degraded() const override { return world_.last_step_stats().budget_hits > 0; }
 
+  void measure_stages() override {
+    world_.set_profiling(true);
+    profiling_ = true;
+  }
+  std::span<const StageTime> stages() const override {
+    if (!profiling_) return {};
+    const chain::StepProfile& p = world_.last_step_profile();
+    for (std::size_t i = 0; i < stages_.size(); ++i)
+      stages_[i] = {chain::kStepStages[i].name, p.*chain::kStepStages[i].ms};
+    return stages_;
+  }
+
   std::span<const EngineEvent> events() const override {
     events_.clear();
     for (const chain::CrushEvent& c : world_.crush_events())
@@ -190,6 +202,8 @@ class ChainEngine final : public Engine {
   mutable std::vector<std::uint32_t> slots_;
   mutable std::vector<std::uint8_t> flag_;  // per scene index, zero between reads
   mutable std::vector<EngineEvent> events_;
+  mutable std::array<StageTime, std::size(chain::kStepStages)> stages_{};
+  bool profiling_ = false;
   const Scene& scene_;          // outlives the engine
   mutable bool reread_ = true;  // bodies came or went since the last read_all
 };

@@ -52,6 +52,13 @@ struct EngineEvent {
   std::size_t body = 0;
 };
 
+// A stage of an engine's step and its wall time in the last step, as the engine itself measures
+// it (Box2D's b2Profile, the chain solver's StepProfile).
+struct StageTime {
+  const char* name = "";
+  double ms = 0.0;
+};
+
 class Engine {
  public:
   virtual ~Engine() = default;
@@ -81,6 +88,11 @@ class Engine {
   virtual bool degraded() const { return false; }
   // The bodies the last step's events concern (replay pages mark them); none by default.
   virtual std::span<const EngineEvent> events() const { return {}; }
+  // Asks the engine to time the stages of the steps that follow (`chainbench run --profile`).
+  virtual void measure_stages() {}
+  // The last step's stage times, top-level stages in the engine's order, the same names every
+  // step; empty for an engine that measures none (the default) or was not asked to.
+  virtual std::span<const StageTime> stages() const { return {}; }
 };
 
 }  // namespace chainbench

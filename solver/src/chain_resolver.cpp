@@ -21,7 +21,9 @@ void ChainResolver::resolve(StepContext& ctx) {
   }
   state_.begin_step(ctx);
   walls_.begin_step(bodies.size());
+  ctx.clock.lap(ctx.profile.prepare);
   fresh_grid_ = sweep_.run(ctx, state_);
+  ctx.clock.lap(ctx.profile.sweep);
   state_.leftover = true;
   for (int pass = 0; pass < ctx.def.max_passes && state_.leftover; ++pass) {
     state_.leftover = false;
@@ -33,7 +35,10 @@ void ChainResolver::resolve(StepContext& ctx) {
     state_.clear_suspects();
     ++ctx.stats.passes;
     ctx.stats.contacts += static_cast<std::uint32_t>(contacts_.size());
-    if (contacts_.empty()) break;
+    if (contacts_.empty()) {
+      ctx.clock.lap(ctx.profile.contacts);
+      break;
+    }
     order_contacts(ctx);
     if (repeat_immovable_) {
       std::size_t count = 0;
@@ -41,6 +46,7 @@ void ChainResolver::resolve(StepContext& ctx) {
         ++count;
       order_entries(ctx, count);
     }
+    ctx.clock.lap(ctx.profile.contacts);
     // Contacts with immovable bodies come first: every dynamic body there is placed against its
     // immovable body, and the walls they become propagate together, one chain, layer by layer.
     std::size_t k = 0;
@@ -66,6 +72,7 @@ void ChainResolver::resolve(StepContext& ctx) {
       }
       run_chain(ctx, c.a, c.b);
     }
+    ctx.clock.lap(ctx.profile.chains);
   }
 }
 

@@ -4,6 +4,7 @@
 #include "bodies.h"
 #include "broadphase.h"
 #include "motion.h"
+#include "stage_clock.h"
 #include "velocity_response.h"
 #include "worker_pool.h"
 
@@ -43,7 +44,9 @@ struct StepContext {
   bool record_links;     // pushes are recorded for the inelastic rule or friction
   // Modern: no move takes a body past the centre of a body in its way (see limit_move).
   bool guard_moves;
-  WorkerPool& pool;  // for the parts of the step that split into independent blocks
+  WorkerPool& pool;   // for the parts of the step that split into independent blocks
+  StageClock& clock;  // laps the resolver's stages into `profile` when profiling
+  StepProfile& profile;
 
   double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
 

@@ -7,6 +7,7 @@
 #include "layout.h"
 #include "motion.h"
 #include "seed2014_resolver.h"
+#include "stage_clock.h"
 #include "step_context.h"
 #include "validate.h"
 #include "velocity_response.h"
@@ -46,6 +47,8 @@ struct World::Impl {
   std::vector<detail::CrushRecord> crush_records;
   std::vector<CrushEvent> crushes;
   detail::WorkerPool pool;  // def.threads - 1 workers
+  bool profiling = false;
+  StepProfile profile;
 
   std::uint32_t slot(BodyId id) const {
     if (id.value >= slot_of_id.size() || slot_of_id[id.value] == detail::kNoSlot) {
@@ -67,6 +70,37 @@ struct World::Impl {
     creation_order.clear();
     for (const std::uint32_t s : slot_of_id) {
       if (s != detail::kNoSlot && s < bodies.dynamic_end) creation_order.push_back(s);
+    }
+  }
+
+  // Files bodies created or destroyed since the last step and clears the last step's records.
+  void prepare() {
+    if (dirty) canonicalize();
+    stats = StepStats{};
+    crush_records.clear();
+    response.clear();
+    std::fill(bodies.touching.begin(), bodies.touching.end(), detail::TouchBits{});
+  }
+
+  // The step's counts and crush events, for last_step_stats() and crush_events().
+  void file_report(std::uint64_t examined_before) {
+    stats.candidates = static_cast<std::uint32_t>(
+        std::min<std::uint64_t>(broadphase.examined() - examined_before, 0xffffffffu));
+    crushes.clear();
+    for (const detail::CrushRecord& r : crush_records) {
+      crushes.push_back({BodyId{bodies.id[r.body]}, BodyId{bodies.id[r.anchor]},
+                         BodyId{bodies.id[r.blocker]}, r.axis});
+    }
+  }
+
+  // Stores the bodies in the order the step reached them, when the layout says it pays (modern).
+  void renumber_if_due() {
+    if (!layout.due()) return;  // the jumps are counted only when a renumbering may follow
+    const std::span<const std::uint32_t> order =
+        layout.plan(bodies, modern.reach_order(), modern.reach_jumps());
+    if (!order.empty()) {
+      renumber(order);
+      stats.renumbered = 1;
     }
   }
 
@@ -235,57 +269,62 @@ void World::update_all(Span<BodyId> ids, Span<Vec2> positions, Span<Vec2> veloci
   }
 }
 
+// The step as a list of stages (world.h's numbered list), each in its own file; the clock laps
+// each into the StepProfile when profiling.
 void World::step(double dt) {
   if (!std::isfinite(dt) || dt <= 0.0) {
     throw std::invalid_argument("step: dt must be finite and > 0, got " + number(dt));
   }
   Impl& w = *impl_;
-  if (w.dirty) w.canonicalize();
-  w.stats = StepStats{};
-  w.crush_records.clear();
-  w.response.clear();
-  std::fill(w.bodies.touching.begin(), w.bodies.touching.end(), detail::TouchBits{});
+  detail::StageClock clock(w.profiling);
+  w.profile = StepProfile{};
+  w.prepare();
+  clock.lap(w.profile.prepare);
 
   const std::uint64_t examined = w.broadphase.examined();
   const bool modern = w.def.variant == Variant::kModern;
   const bool rough = modern && w.rough_bodies > 0;
   w.motion.integrate(w.bodies, w.broadphase, w.def.gravity, dt, modern, rough, w.pool);
+  clock.lap(w.profile.integrate);
+
   const std::uint64_t budget =
       static_cast<std::uint64_t>(w.def.budget_per_body) * w.bodies.size() + 1024u;
   detail::StepContext ctx{
       w.bodies, w.broadphase, w.response,
       w.def,    w.stats,      w.crush_records,
       budget,   w.motion,     w.def.velocity_rule == VelocityRule::kInelastic || rough,
-      modern,   w.pool};
+      modern,   w.pool,       clock,
+      w.profile};
   if (modern) {
-    w.modern.resolve(ctx);
+    w.modern.resolve(ctx);  // laps sweep, contacts and chains itself
   } else {
     w.seed2014.resolve(ctx, w.creation_order);
+    clock.lap(w.profile.chains);
   }
+
   if (w.def.velocity_rule == VelocityRule::kInelastic) {
     w.response.apply(w.bodies, w.def.restitution_threshold, w.pool);
   }
+  clock.lap(w.profile.velocity);
+
   if (rough)
     w.friction.apply(w.bodies, w.broadphase, w.response.links(), w.motion.pre_velocity, dt);
-  w.stats.candidates = static_cast<std::uint32_t>(
-      std::min<std::uint64_t>(w.broadphase.examined() - examined, 0xffffffffu));
-  w.crushes.clear();
-  for (const detail::CrushRecord& r : w.crush_records) {
-    w.crushes.push_back({BodyId{w.bodies.id[r.body]}, BodyId{w.bodies.id[r.anchor]},
-                         BodyId{w.bodies.id[r.blocker]}, r.axis});
-  }
-  if (modern && w.layout.due()) {  // the jumps are counted only when a renumbering may follow
-    const std::span<const std::uint32_t> order =
-        w.layout.plan(w.bodies, w.modern.reach_order(), w.modern.reach_jumps());
-    if (!order.empty()) {
-      w.renumber(order);
-      w.stats.renumbered = 1;
-    }
-  }
+  clock.lap(w.profile.friction);
+
+  w.file_report(examined);
+  if (modern) w.renumber_if_due();
+  clock.lap(w.profile.layout);
+  w.profile.total = clock.total();
 }
 
 const StepStats& World::last_step_stats() const noexcept {
   return impl_->stats;
+}
+void World::set_profiling(bool on) noexcept {
+  impl_->profiling = on;
+}
+const StepProfile& World::last_step_profile() const noexcept {
+  return impl_->profile;
 }
 Span<const CrushEvent> World::crush_events() const noexcept {
   return {impl_->crushes.data(), impl_->crushes.size()};

@@ -41,10 +41,14 @@ std::vector<Scene> scenes() {
 
 TEST(IsolatedRun, TheBytesOfARunReadBackAsTheRunFieldByField) {
   bool near_miss = false, has_speed = false, speed_failed = false, position_passed = false;
+  bool staged = false;
+  RunOptions options;
+  options.stages = true;  // the chain engine times its stages (the plugin times none)
   for (const Scene& s : scenes()) {
     for (const char* engine : {kBallistic, "chain"}) {
       const EngineSpec spec = parse_engine_spec(engine);
-      const EngineRun run = run_engine(s, spec, RunOptions{});
+      const EngineRun run = run_engine(s, spec, options);
+      staged |= !run.stages.empty();
       ASSERT_TRUE(run.expect && run.verdict);
       near_miss |= run.expect->near_miss;
       has_speed |= run.expect->has_speed;
@@ -60,6 +64,7 @@ TEST(IsolatedRun, TheBytesOfARunReadBackAsTheRunFieldByField) {
   EXPECT_TRUE(has_speed);
   EXPECT_TRUE(speed_failed);
   EXPECT_TRUE(position_passed);
+  EXPECT_TRUE(staged);
 }
 
 // What the parent writes for an engine run in a child is what it writes for the same engine run

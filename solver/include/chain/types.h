@@ -132,4 +132,33 @@ struct StepStats {
   std::uint32_t candidates = 0;
 };
 
+// Where the last step's time went: wall time per stage of World::step, in the order the stages
+// run, milliseconds (the part Box2D's b2Profile plays). Measured only while the world measures
+// them (World::set_profiling); all zero otherwise.
+struct StepProfile {
+  double prepare = 0.0;    // bodies created or destroyed since the last step filed; flags cleared
+  double integrate = 0.0;  // drives, gravity and motion
+  double sweep = 0.0;      // fast bodies swept along their paths (modern)
+  double contacts = 0.0;   // overlapping pairs gathered and put in order, every pass (modern)
+  double chains = 0.0;     // pushes resolved along chains and walls, every pass (seed2014: all of
+                           // its resolution, which gathers as it goes)
+  double velocity = 0.0;   // the velocity rule
+  double friction = 0.0;   // friction (modern, rough bodies only)
+  double layout = 0.0;     // the step's report filed; bodies renumbered in reach order (modern)
+  double total = 0.0;      // the whole step: the stages and the little between them
+};
+
+// The stages of a StepProfile as a table, in step order (total excluded): what a profile's
+// readers print.
+struct StepStage {
+  const char* name;
+  double StepProfile::*ms;
+};
+inline constexpr StepStage kStepStages[] = {
+    {"prepare", &StepProfile::prepare},   {"integrate", &StepProfile::integrate},
+    {"sweep", &StepProfile::sweep},       {"contacts", &StepProfile::contacts},
+    {"chains", &StepProfile::chains},     {"velocity", &StepProfile::velocity},
+    {"friction", &StepProfile::friction}, {"layout", &StepProfile::layout},
+};
+
 }  // namespace chain

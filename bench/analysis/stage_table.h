@@ -1,0 +1,16 @@
+// `chainbench run --profile`: each engine's step split into the stages the engine itself times
+// (Engine::stages), beside the harness's timing of the same steps.
+#pragma once
+
+#include "report.h"
+
+#include <ostream>
+
+namespace chainbench {
+
+// One row per engine that measured stages: mean ms per timed step of each stage, its share of
+// the engine's mean timed step, and what lies outside its stages (drives, bodies added and
+// removed, the engine's own bookkeeping). Prints nothing when no run has stages.
+void print_stage_table(std::ostream& out, const RunReport& report);
+
+}  // namespace chainbench

@@ -49,13 +49,14 @@ RelationJudgement finish(double value, double tolerance, bool extra_pass = true)
 // The squeeze of body b: for each side (left, right, below, above) the smallest gap to a static or
 // kinematic body facing it there (overlapping it along the other axis); the tighter of the two
 // opposite pairs decides, by the wider of its two gaps.
-RelationJudgement squeeze(const Scene& scene, const Expectation& e, const BodyState& s) {
+RelationJudgement squeeze(const Scene& scene, const Expectation& e, const BodyState& s, int k) {
   const Extent2 a = extent(scene, s, e.body);
   if (!a.finite) return finish(kInf, e.tolerance);
   double gap[4] = {kInf, kInf, kInf, kInf};
   std::size_t who[4] = {0, 0, 0, 0};
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (i == e.body || scene.bodies[i].kind == BodyKind::kDynamic) continue;
+    if (i == e.body || scene.bodies[i].kind == BodyKind::kDynamic || !scene.bodies[i].alive(k))
+      continue;
     const Extent2 b = extent(scene, s, i);
     if (!b.finite) continue;
     const Vec2d sep = separation(a, b);
@@ -74,8 +75,9 @@ RelationJudgement squeeze(const Scene& scene, const Expectation& e, const BodySt
 
 }  // namespace
 
-RelationJudgement judge_relation(const Scene& scene, const Expectation& e, const BodyState& s) {
-  if (e.kind == Kind::kSqueezed) return squeeze(scene, e, s);
+RelationJudgement judge_relation(const Scene& scene, const Expectation& e, const BodyState& s,
+                                 int k) {
+  if (e.kind == Kind::kSqueezed) return squeeze(scene, e, s, k);
   const Extent2 a = extent(scene, s, e.body), b = extent(scene, s, e.other);
   RelationJudgement j;
   if (!a.finite || !b.finite) {
@@ -99,12 +101,13 @@ RelationJudgement judge_relation(const Scene& scene, const Expectation& e, const
   return j;
 }
 
-PairOverlap deepest_among(const Scene& scene, const Expectation& e, const BodyState& s) {
+PairOverlap deepest_among(const Scene& scene, const Expectation& e, const BodyState& s, int state) {
   PairOverlap deepest;
   for (std::size_t m = 0; m < e.bodies.size(); ++m) {
     for (std::size_t n = m + 1; n < e.bodies.size(); ++n) {
       const std::size_t i = std::min(e.bodies[m], e.bodies[n]);
       const std::size_t k = std::max(e.bodies[m], e.bodies[n]);
+      if (!scene.bodies[i].alive(state) || !scene.bodies[k].alive(state)) continue;
       const Extent2 a = extent(scene, s, i), b = extent(scene, s, k);
       const Vec2d sep = separation(a, b);
       const double depth = !a.finite || !b.finite       ? kInf

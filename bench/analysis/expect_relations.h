@@ -29,12 +29,14 @@ struct RelationJudgement {
   bool beside = false;
 };
 
-// Judges e (is_relation(e.kind)) on state s.
-RelationJudgement judge_relation(const Scene& scene, const Expectation& e, const BodyState& s);
+// Judges e (is_relation(e.kind)) on state s, state number k: a squeeze counts only the static and
+// kinematic bodies in the world in that state (validate() keeps the bodies e names alive there).
+RelationJudgement judge_relation(const Scene& scene, const Expectation& e, const BodyState& s,
+                                 int k);
 
-// The deepest overlap in s among the pairs of e.bodies (any kinds), with a and b its bodies; depth
-// 0 when none overlap.
-PairOverlap deepest_among(const Scene& scene, const Expectation& e, const BodyState& s);
+// The deepest overlap in s (state number k) among the pairs of e.bodies in the world then (any
+// kinds), with a and b its bodies; depth 0 when none overlap.
+PairOverlap deepest_among(const Scene& scene, const Expectation& e, const BodyState& s, int k);
 
 // The failure of a relation entry in words, as verdict.cpp's describe() words the others.
 std::string describe_relation(const Scene& scene, const ExpectOutcome& o);

@@ -96,7 +96,8 @@ void ExpectationCheck::observe(int k, const BodyState& state, const BodyState* p
     ExpectOutcome& o = outcomes_[n];
     if (e.kind == Kind::kNoOverlap) {
       // Named bodies: their own pairs, whatever their kinds; else the run's deepest pair.
-      const PairOverlap among = e.bodies.empty() ? PairOverlap{} : deepest_among(scene_, e, state);
+      const PairOverlap among =
+          e.bodies.empty() ? PairOverlap{} : deepest_among(scene_, e, state, k);
       const PairOverlap* pair = e.bodies.empty() ? deepest : &among;
       const double depth = pair ? pair->depth : 0.0;
       if (judge(o, depth, std::max(0.0, depth - e.depth), depth <= e.depth, k)) {
@@ -106,7 +107,7 @@ void ExpectationCheck::observe(int k, const BodyState& state, const BodyState* p
       continue;
     }
     if (is_relation(e.kind)) {
-      const RelationJudgement r = judge_relation(scene_, e, state);
+      const RelationJudgement r = judge_relation(scene_, e, state, k);
       if (judge(o, r.value, r.error, r.pass, k)) {
         o.body = e.body, o.other = r.other, o.position = state.position[e.body];
         o.beside = r.beside;

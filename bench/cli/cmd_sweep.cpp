@@ -48,7 +48,10 @@ int run(const SweepArgs& a) {
         variants.push_back(SweepVariant{vary.key, vary.texts[k], vary.values[k]});
       }
     }
-    if (vary.key == "dt" && a.steps == 0) {
+    const bool steps_given = std::any_of(sets.begin(), sets.end(), [](const std::string& s) {
+      return s.substr(0, s.find('=')) == "steps";
+    });
+    if (vary.key == "dt" && !steps_given) {
       notes.push_back(
           "--vary dt: each run lasts as long as the scene's default run at 1/60 s "
           "(steps = default steps / 60 / dt)");

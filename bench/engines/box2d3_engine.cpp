@@ -113,7 +113,9 @@ class Box2d3Engine final : public Engine {
     b2ShapeDef shape = b2DefaultShapeDef();
     shape.material.friction = static_cast<float>(scene_.friction_of(sb));
     shape.material.restitution = static_cast<float>(scene_.restitution_of(sb));
-    shape.updateBodyMass = false;  // set exactly below
+    // The shape updates the body's mass (then set exactly below) so that v3 also learns the
+    // body's extent: without it a body's minExtent stays huge, no body is ever fast and
+    // continuous collision never runs, whatever `ccd` says (docs/box2d3.md §2).
     const b2Polygon box =
         b2MakeBox(static_cast<float>(sb.half_extents.x), static_cast<float>(sb.half_extents.y));
     shapes_[i] = b2CreatePolygonShape(id, &shape, &box);

@@ -108,7 +108,7 @@ std::string checked_key_value(const std::string& what, const KeyDef& key,
     throw InputError(what + ": " + cut_for_message(value) + " is out of range [" +
                      shortest(key.min) + ", " + shortest(key.max) + "]");
   }
-  return shortest(v);
+  return shortest(v + 0.0);  // -0 is 0: one spec, one label
 }
 
 void add_key_settings(const std::string& where, const std::vector<KeyDef>& keys,

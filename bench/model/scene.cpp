@@ -141,16 +141,20 @@ void check_expectation(Checker& c, const Scene& s, std::size_t i) {
                                std::to_string(*e.to_step));
   }
   // A named body is judged only in states it exists in: a window reaching outside its life
-  // would judge a body that is not there.
-  if (e.kind != Kind::kNoOverlap && !every && e.body < s.bodies.size()) {
-    const SceneBody& b = s.bodies[e.body];
-    const int first = e.first_state(s.steps), last = e.last_state(s.steps);
+  // would judge a body that is not there. So is the body a relation names beside it.
+  const int first = e.first_state(s.steps), last = e.last_state(s.steps);
+  auto within_life = [&](std::size_t body, const std::string& named_by) {
+    const SceneBody& b = s.bodies[body];
     if (first < b.from_step || last > b.to_step) {
       c.add(at + (first < b.from_step ? ".from_step" : ".to_step"),
             "checks states " + std::to_string(first) + ".." + std::to_string(last) +
-                ", outside the life of body \"" + b.name + "\" (it exists " + life_text(b) + ")");
+                ", outside the life of body \"" + b.name + "\" (" + named_by + "it exists " +
+                life_text(b) + ")");
     }
-  }
+  };
+  if (e.kind != Kind::kNoOverlap && !every && e.body < s.bodies.size()) within_life(e.body, "");
+  if (relation && e.kind != Kind::kSqueezed && e.other < s.bodies.size() && e.other != e.body)
+    within_life(e.other, std::string("named by \"") + to_string(e.kind) + "\"; ");
 }
 
 }  // namespace

@@ -92,6 +92,96 @@ TEST(Lifetimes, AWindowOutsideABodysLifeIsRefusedNamingTheEntry) {
   }
 }
 
+// The body a relation names beside its own must be there too: "keep below leaver" on the final
+// state judges a body gone since step 40.
+TEST(Lifetimes, ARelationToABodyOutOfTheWorldIsRefused) {
+  for (const auto& [entry, field] :
+       {std::pair<std::string, std::string>{
+            R"({"body": "keep", "below": "leaver", "tolerance": 2})", "expect[6].to_step"},
+        {R"({"body": "keep", "on": "late", "tolerance": 2, "from_step": 0})",
+         "expect[6].from_step"},
+        {R"({"body": "late", "above": "heir", "tolerance": 2, "from_step": 30})",
+         "expect[6].from_step"}}) {
+    SCOPED_TRACE(entry);
+    const std::string text = edited(R"("from_step": 0}
+  ])",
+                                    R"("from_step": 0}, )" + entry + "\n  ]");
+    try {
+      parse_scene(text, "comings.json");
+      FAIL() << "a relation to a body out of the world was accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("comings.json: " + field), std::string::npos) << what;
+      EXPECT_NE(what.find("outside the life of body"), std::string::npos) << what;
+    }
+  }
+  // Within both lives it is a fact like any other: "heir" on "ground" from its first state.
+  const std::string fine = edited(
+      R"("from_step": 0}
+  ])",
+      R"("from_step": 0}, {"body": "heir", "on": "ground", "tolerance": 0.05, "from_step": 40}
+  ])");
+  const Scene scene = parse_scene(fine, "comings.json");
+  const EngineRun run = run_engine(scene, parse_engine_spec("chain"), RunOptions{});
+  ASSERT_TRUE(run.expect.has_value());
+  EXPECT_TRUE(run.expect->pass) << run.expect->max_error;
+}
+
+// A squeeze counts only the walls in the world in the state judged: walls that left at step 10
+// squeeze nothing at the end, so "squeezed" fails there, and holds while they stand.
+TEST(Lifetimes, ASqueezeCountsOnlyTheWallsInTheWorld) {
+  auto scene_with = [](const std::string& window) {
+    return parse_scene(R"({
+      "schema": 1, "name": "walls_leave", "steps": 60, "gravity": [0, 0],
+      "bodies": [
+        {"name": "left", "type": "static", "center": [-1, 0], "half_extents": [0.5, 2],
+         "to_step": 10},
+        {"name": "right", "type": "static", "center": [1, 0], "half_extents": [0.5, 2],
+         "to_step": 10},
+        {"name": "box", "type": "dynamic", "center": [0, 0], "half_extents": [0.5, 0.5], "mass": 1}
+      ],
+      "expect": [{"body": "box", "squeezed": true, "tolerance": 0.01)" +
+                           window + R"(}]
+    })",
+                       "walls_leave.json");
+  };
+  const Scene standing = scene_with(R"(, "from_step": 0, "to_step": 10)");
+  const Scene gone = scene_with("");
+  const EngineSpec chain = parse_engine_spec("chain");
+  const EngineRun held = run_engine(standing, chain, RunOptions{});
+  ASSERT_TRUE(held.expect.has_value());
+  EXPECT_TRUE(held.expect->pass) << held.expect->max_error;
+  const EngineRun after = run_engine(gone, chain, RunOptions{});
+  ASSERT_TRUE(after.expect.has_value());
+  EXPECT_FALSE(after.expect->pass) << "walls gone since step 10 still squeeze at step 60";
+}
+
+// Two bodies entering together, overlapping as the file places them, start overlapping as bodies
+// of state 0 do: in every engine, also those that hold positions in single precision, they are
+// not penetrating for it (0.3 m deep in a scene whose tolerance is the starting overlap).
+TEST(Lifetimes, BodiesEnteringTogetherOverlappingAreJudgedAsStartingSo) {
+  const Scene scene = parse_scene(R"({
+    "schema": 1, "name": "enter_pair", "steps": 60,
+    "bodies": [
+      {"name": "ground", "type": "static", "center": [0, -0.5], "half_extents": [10, 0.5]},
+      {"name": "a", "type": "dynamic", "center": [0, 0.5], "half_extents": [0.5, 0.5],
+       "mass": 1, "from_step": 20},
+      {"name": "b", "type": "dynamic", "center": [0.7, 0.5], "half_extents": [0.5, 0.5],
+       "mass": 1, "from_step": 20}
+    ]
+  })",
+                                  "enter_pair.json");
+  for (const EngineDef& def : engine_registry()) {
+    if (def.name == "plugin") continue;
+    SCOPED_TRACE(def.name);
+    const EngineSpec spec = parse_engine_spec(def.name);
+    if (!missing_capability(spec, scene).empty()) continue;
+    const EngineRun run = run_engine(scene, spec, RunOptions{});
+    ASSERT_TRUE(run.verdict.has_value());
+    EXPECT_TRUE(run.verdict->ok()) << run.verdict->str();
+  }
+}
+
 TEST(Lifetimes, ABodyMustTakePartInAStep) {
   const std::string text = edited(R"("to_step": 40},)", R"("to_step": 0},)");
   try {

@@ -127,6 +127,20 @@ TEST(SceneFile, RunLengthDropsFinalStateExpectationsAndChecksWindows) {
   }
 }
 
+// A final-state entry is dropped by a shorter run whatever it names: its body may not have
+// entered by the new last step (here "late" enters at step 30 and the run stops at 20).
+TEST(SceneFile, RunLengthDropsAFinalStateEntryOnABodyNotYetThere) {
+  Scene s = parse_scene(R"({"schema": 1, "name": "t", "steps": 60, "bodies": [
+      {"name": "floor", "type": "static", "center": [0, -0.5], "half_extents": [10, 0.5]},
+      {"name": "late", "type": "dynamic", "center": [0, 0.5], "half_extents": [0.5, 0.5],
+       "mass": 1, "from_step": 30}],
+      "expect": [{"body": "late", "center": [0, 0.5], "tolerance": 0.01}]})",
+                        "late.json");
+  const std::string note = set_run_length(s, 20, "late.json");
+  EXPECT_NE(note.find("1 expectation(s) of late.json"), std::string::npos) << note;
+  EXPECT_TRUE(s.expect.empty());
+}
+
 TEST(SceneFile, ValidFileReadsAsWritten) {
   const Scene s = parse_scene(kValid, "scene.json");
   EXPECT_EQ(s.name, "push-two");

@@ -92,13 +92,14 @@ class ChainEngine final : public Engine {
   }
 
   void step(int step_index) override {
-    // A drive persists in the solver until cleared: release the bodies whose drivers ended.
+    // A drive persists in the solver until cleared: only what changed at this step is told,
+    // drives that begin or change and bodies whose drivers ended.
     drives_.advance(step_index);
     for (const std::size_t b : drives_.released()) {
       // A drive that ends as its body leaves went with the body.
       if (ids_[b] != chain::BodyId{}) world_.clear_drive(ids_[b]);
     }
-    for (const Drive& d : drives_.active()) {
+    for (const Drive& d : drives_.changed()) {
       const chain::DriveAxes axes = d.hold_x && d.hold_y ? chain::DriveAxes::kBoth
                                     : d.hold_x           ? chain::DriveAxes::kX
                                                          : chain::DriveAxes::kY;

@@ -131,6 +131,8 @@ void Broadphase::clear_overlay() {
     level.overlay_head[level.overlay_bucket(overlay_cx_[i], overlay_cy_[i])] = kNoSlot;
     in_overlay_[i] = 0;
   }
+  for (Level& level : levels_)
+    level.overlay_members = 0;
   members_.clear();
   stale_ = 0;
 }
@@ -152,6 +154,7 @@ void Broadphase::refile(std::uint32_t body, double x, double y) {
     unlink(body);
   } else {
     in_overlay_[body] = 1;
+    ++level.overlay_members;
     members_.push_back(body);
     // Until build() runs after a configure() or renumber(), entry_of_ names the entries of the old
     // slots (of another level, maybe): nothing reads them before build() files every body anew.

@@ -145,6 +145,7 @@ class Broadphase {
     std::vector<std::int32_t> key_x, key_y;
     std::vector<Entry> entries;               // grouped by bucket, solve order within a bucket
     std::vector<std::uint32_t> overlay_head;  // per bucket: first overlay body, or kNoSlot
+    std::uint32_t overlay_members = 0;        // bodies of this level in the overlay: 0, no probe
 
     // Overlay cells: the same cells, unbounded (a far push may leave the built bounding box).
     static std::int32_t unbounded(double c) {
@@ -271,6 +272,9 @@ template <class Fn>
 void Broadphase::scan_overlay(std::size_t l, double x, double y, double rx, double ry,
                               Fn&& fn) const {
   const Level& level = levels_[l];
+  // A level none of whose bodies was filed again has nothing in the overlay to find: the scan's
+  // cell arithmetic and empty buckets would be all it did.
+  if (level.overlay_members == 0) return;
   const std::int32_t x0 = level.overlay_x(x - rx), x1 = level.overlay_x(x + rx);
   const std::int32_t y0 = level.overlay_y(y - ry), y1 = level.overlay_y(y + ry);
   if ((static_cast<std::int64_t>(x1) - x0 + 1) * (static_cast<std::int64_t>(y1) - y0 + 1) >
@@ -302,9 +306,7 @@ void Broadphase::scan_all(double x, double y, double hx, double hy, double pad, 
     level.scan(level.cells_near(x, y, hx, hy, pad), examined_, [&](const Entry& e) {
       if (!e.out) fn(e.body);
     });
-    if (!members_.empty()) {
-      scan_overlay(l, x, y, hx + level.small_half + pad, hy + level.small_half + pad, fn);
-    }
+    scan_overlay(l, x, y, hx + level.small_half + pad, hy + level.small_half + pad, fn);
   }
 }
 

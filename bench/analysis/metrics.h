@@ -124,6 +124,11 @@ class MetricsRecorder {
     std::uint32_t a, b;  // a < b
     double depth, tolerance;
   };
+  // Both bodies entered the world in state k: they stand as the file placed them, no step having
+  // moved them (the next state judges what the engine made of their overlap).
+  bool placed(std::size_t a, std::size_t b, int k) const {
+    return lives_ && k > 0 && scene_.bodies[a].from_step == k && scene_.bodies[b].from_step == k;
+  }
   // Lists in moved_ the bodies the step from `before` to `after` moved (or left with a velocity);
   // false, with the list unfinished, when more than half did (a full pass is cheaper then).
   bool find_moved(const BodyState& before, const BodyState& after);

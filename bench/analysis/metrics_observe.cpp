@@ -298,7 +298,7 @@ void MetricsRecorder::visit(const BodyState& before, const BodyState& after, std
   const double tolerance =
       step < scene_.steps && start > 0.0 ? std::max(base, start + float_resolution(scale)) : base;
   fresh_.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), d, tolerance});
-  if (!sel_.penetration) return;
+  if (!sel_.penetration || placed(i, j, step)) return;
   // The first step's worst stands against later ones as bad; within a step, the lowest pair.
   const double ratio = d / tolerance;
   if (ratio > worst_ratio_ || (ratio == worst_ratio_ && worst_.step == step &&
@@ -311,14 +311,18 @@ void MetricsRecorder::visit(const BodyState& before, const BodyState& after, std
 void MetricsRecorder::settle(int step) {
   deepest_ = PairOverlap{};
   deepest_.step = step;
+  double stepped_deepest = 0.0;
   for (const Overlap& o : fresh_) {
     if (o.depth > deepest_.depth ||
         (o.depth == deepest_.depth && pair_key(o.a, o.b) < pair_key(deepest_.a, deepest_.b)))
       deepest_ = {o.depth, o.a, o.b, step, o.tolerance};
     step_pen_[o.a] = std::max(step_pen_[o.a], o.depth);
     step_pen_[o.b] = std::max(step_pen_[o.b], o.depth);
+    if (!placed(o.a, o.b, step)) stepped_deepest = std::max(stepped_deepest, o.depth);
   }
-  max_pen_ = std::max(max_pen_, deepest_.depth);
+  // The run's deepest penetration is an engine's: not an overlap the file placed two bodies in as
+  // they enter together (as state 0's overlaps are not), which the state shows all the same.
+  max_pen_ = std::max(max_pen_, stepped_deepest);
 }
 
 void MetricsRecorder::update_slack(const BodyState& before, const BodyState& after, std::size_t i,

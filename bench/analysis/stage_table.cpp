@@ -13,28 +13,31 @@ void print_stage_table(std::ostream& out, const RunReport& report) {
   for (const EngineRun& r : report.runs)
     runs.push_back(&r);
   if (report.reference) runs.push_back(&*report.reference);
-  bool any = false;
+  out << "\nstages (each engine's own timing of its step: mean ms per timed step, and share of "
+         "its mean ms/step; the table above gives the median):\n";
+  std::string untimed;
   for (const EngineRun* r : runs) {
-    if (r->stages.empty()) continue;
-    if (!any) {
-      out << "\nstages (each engine's own timing of its step: mean ms per timed step, and share "
-             "of its mean ms/step):\n";
-      any = true;
+    if (r->stages.empty()) {
+      untimed += (untimed.empty() ? "" : ", ") + r->spec.label();
+      continue;
     }
     const double step = r->timing.mean_ms;
+    auto share = [&](double ms) { return step > 0.0 ? fmt_g(100.0 * ms / step, 2) + "%" : "-"; };
     TextTable table({"stage", "ms/step", "share"});
     double staged = 0.0;
     for (const StageMean& s : r->stages) {
       staged += s.ms;
-      table.add({s.name, fmt_ms(s.ms), step > 0.0 ? fmt_g(100.0 * s.ms / step, 2) + "%" : "-"});
+      table.add({s.name, fmt_g(s.ms), share(s.ms)});
     }
     const double rest = std::max(0.0, step - staged);
-    table.add(
-        {"(outside them)", fmt_ms(rest), step > 0.0 ? fmt_g(100.0 * rest / step, 2) + "%" : "-"});
-    table.add({"(step)", fmt_ms(step), "100%"});
+    table.add({"(outside them)", fmt_g(rest), share(rest)});
+    table.add({"(step, mean)", fmt_g(step), "100%"});
     out << '\n' << r->spec.label() << ":\n";
     table.print(out);
   }
+  if (!untimed.empty())
+    out << "\nno stage timing of their own: " << untimed
+        << " (chain, box2d and box2d3 time their stages)\n";
 }
 
 }  // namespace chainbench

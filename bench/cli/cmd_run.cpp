@@ -164,7 +164,7 @@ int run_scene(const RunArgs& a) {
   compare(report);
 
   print_run_table(std::cout, report);
-  print_stage_table(std::cout, report);
+  if (a.profile) print_stage_table(std::cout, report);
   if (!note.empty()) std::cout << "\nnote: " << note << '\n';
   for (const std::string& left_out : choice.notes)
     std::cout << "note: " << left_out << '\n';

@@ -146,9 +146,14 @@ void check_expectation(Checker& c, const Scene& s, std::size_t i) {
   auto within_life = [&](std::size_t body, const std::string& named_by) {
     const SceneBody& b = s.bodies[body];
     if (first < b.from_step || last > b.to_step) {
-      c.add(at + (first < b.from_step ? ".from_step" : ".to_step"),
-            "checks states " + std::to_string(first) + ".." + std::to_string(last) +
-                ", outside the life of body \"" + b.name + "\" (" + named_by + "it exists " +
+      // An entry without a window is judged on the final state: it has no key to blame but itself.
+      const std::string what =
+          e.windowed() ? "checks states " + std::to_string(first) + ".." + std::to_string(last)
+                       : "checks the final state, " + std::to_string(last);
+      c.add(at + (!e.windowed()         ? ""
+                  : first < b.from_step ? ".from_step"
+                                        : ".to_step"),
+            what + ", outside the life of body \"" + b.name + "\" (" + named_by + "it exists " +
                 life_text(b) + ")");
     }
   };

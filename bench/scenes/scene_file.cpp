@@ -691,8 +691,8 @@ std::string set_run_length(Scene& scene, int steps, const std::string& source) {
   const std::size_t dropped = before - scene.expect.size();
   if (dropped == 0) return {};
   return std::to_string(dropped) + " expectation(s) of " + source +
-         " state where bodies end at step " + std::to_string(own) + "; the run ends at step " +
-         std::to_string(steps) + ", so they are not checked";
+         " judge the state where bodies end, at step " + std::to_string(own) +
+         "; the run ends at step " + std::to_string(steps) + ", so they are not checked";
 }
 
 Scene load_scene_file(const std::string& path) {

@@ -62,9 +62,10 @@ TEST(CliProfile, EachEnginesStagesArePrintedAndWrittenWithinItsStep) {
     for (const std::string& name : names)
       EXPECT_NE(r.out.find(name), std::string::npos) << name;
   }
-  // Chipmunk times no stages: it has none in the JSON, and no table.
+  // Chipmunk times no stages: it has none in the JSON, and no table, but a line that says so.
   EXPECT_FALSE(run_of(j, "chipmunk:").contains("stages_ms"));
   EXPECT_EQ(r.out.find("\nchipmunk:\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("no stage timing of their own: chipmunk"), std::string::npos) << r.out;
 }
 
 TEST(CliProfile, WithoutTheFlagNothingIsTimedByStage) {

@@ -258,9 +258,9 @@ TEST(Cli, ShorterRunOfASceneFileDropsItsFinalStateExpectations) {
   const std::string train = std::string(CHAINBENCH_TEST_SCENES) + "/verdicts/push_train.json";
   const Result r = chainbench("run --scene-file " + train + " --steps 50 --engines chain");
   EXPECT_EQ(r.status, 0) << r.out;
-  EXPECT_NE(
-      r.out.find("note: 1 expectation(s) of " + train + " state where bodies end at step 150"),
-      std::string::npos)
+  EXPECT_NE(r.out.find("note: 1 expectation(s) of " + train +
+                       " judge the state where bodies end, at step 150"),
+            std::string::npos)
       << r.out;
 }
 

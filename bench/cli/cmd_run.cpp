@@ -48,6 +48,10 @@ int run_scene(const RunArgs& a) {
   Scene scene = a.scene_file.empty() ? make_scene(a.scene, sets) : load_scene_file(a.scene_file);
   std::string note;
   if (!a.scene_file.empty() && a.steps > 0) note = set_run_length(scene, a.steps, a.scene_file);
+  if (!a.scene_file.empty()) {
+    if (std::string late = late_bodies_note(scene, a.scene_file); !late.empty())
+      note += (note.empty() ? "" : "\nnote: ") + late;
+  }
   const EngineChoice choice = choose_engines(a.engines, {&scene});
   const std::vector<EngineSpec>& engines = choice.engines;
   std::optional<EngineSpec> reference;

@@ -69,6 +69,8 @@ int run(const SweepArgs& a) {
       if (std::string note = set_run_length(scenes.back(), a.steps, file); !note.empty())
         notes.push_back(std::move(note));
     }
+    if (std::string late = late_bodies_note(scenes.back(), file); !late.empty())
+      notes.push_back(std::move(late));
   }
   variants.resize(scenes.size());
   if (scenes.empty())

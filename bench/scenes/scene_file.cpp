@@ -695,6 +695,21 @@ std::string set_run_length(Scene& scene, int steps, const std::string& source) {
          "; the run ends at step " + std::to_string(steps) + ", so they are not checked";
 }
 
+std::string late_bodies_note(const Scene& scene, const std::string& source) {
+  std::size_t late = 0;
+  const SceneBody* first = nullptr;
+  for (const SceneBody& b : scene.bodies) {
+    if (b.from_step < scene.steps) continue;
+    if (!first) first = &b;
+    ++late;
+  }
+  if (late == 0) return {};
+  return std::to_string(late) + " bod" + (late == 1 ? "y" : "ies") + " of " + source +
+         " (the first \"" + first->name + "\", from_step " + std::to_string(first->from_step) +
+         ") " + (late == 1 ? "enters" : "enter") + " after the run's last step, " +
+         std::to_string(scene.steps) + ", and take" + (late == 1 ? "s" : "") + " part in nothing";
+}
+
 Scene load_scene_file(const std::string& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);

@@ -18,4 +18,8 @@ Scene parse_scene(const std::string& text, const std::string& source);
 // ones are kept, and a window beyond `steps` is refused (InputError naming the entry).
 std::string set_run_length(Scene& scene, int steps, const std::string& source);
 
+// A note when bodies of the scene enter only after its last step (from_step >= steps: valid, as
+// a file may be run longer with --steps, but they take part in nothing); empty otherwise.
+std::string late_bodies_note(const Scene& scene, const std::string& source);
+
 }  // namespace chainbench

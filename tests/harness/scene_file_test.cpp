@@ -141,6 +141,21 @@ TEST(SceneFile, RunLengthDropsAFinalStateEntryOnABodyNotYetThere) {
   EXPECT_TRUE(s.expect.empty());
 }
 
+// A body that enters only after the run's last step is valid (the file may be run longer) but
+// takes part in nothing, and the run says so; run to its step, it does.
+TEST(SceneFile, BodiesEnteringAfterTheLastStepAreNoted) {
+  Scene s = parse_scene(R"({"schema": 1, "name": "t", "steps": 60, "bodies": [
+      {"name": "floor", "type": "static", "center": [0, -0.5], "half_extents": [10, 0.5]},
+      {"name": "never", "type": "dynamic", "center": [0, 0.5], "half_extents": [0.5, 0.5],
+       "mass": 1, "from_step": 60}]})",
+                        "late.json");
+  EXPECT_EQ(late_bodies_note(s, "late.json"),
+            "1 body of late.json (the first \"never\", from_step 60) enters after the run's last "
+            "step, 60, and takes part in nothing");
+  set_run_length(s, 80, "late.json");
+  EXPECT_EQ(late_bodies_note(s, "late.json"), "");
+}
+
 TEST(SceneFile, ValidFileReadsAsWritten) {
   const Scene s = parse_scene(kValid, "scene.json");
   EXPECT_EQ(s.name, "push-two");

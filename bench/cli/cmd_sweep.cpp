@@ -101,6 +101,12 @@ int run(const SweepArgs& a) {
       }
     }
   }
+  if (a.reference == "none") {
+    throw InputError(
+        "--reference none: a sweep measures each point's error against a reference "
+        "run, so it needs one (leave --reference out for " +
+        accurate_reference().label() + ")");
+  }
   const EngineSpec reference =
       a.reference.empty() ? accurate_reference() : parse_engine_spec(a.reference);
   std::vector<EngineSpec> read = grid;

@@ -30,6 +30,8 @@ constexpr BadCall kBadCalls[] = {
     {"run --scene stack --engines havok", "unknown engine \"havok\""},
     {"run --scene stack --steps 0", "--steps"},
     {"run --scene stack --metrics speed", "unknown metric"},
+    {"sweep --scene stack --reference none",
+     "--reference none: a sweep measures each point's error"},
     {"run --scene stack --scene-file x.json", "excludes"},
     {"run --scene-file /nonexistent.json", "/nonexistent.json: no such file"},
     {"run --scene-file /tmp", "/tmp: is a directory, not a scene file"},

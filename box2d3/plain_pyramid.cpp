@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "plain_pyramid.h"
 
 #include <box2d/box2d.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A Box2D v3 world built by hand with the plain v3 API: the `pyramid` scene (base boxes of 1 m,
 // 1 kg, no friction, on a static ground), fixed rotation, sleeping off, stepped at 1/60 s with
 // `substeps` sub-steps. The benchmark times it beside the box2d3 engine on the same scene, so

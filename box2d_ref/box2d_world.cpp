@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "box2d_world.h"
 
 #include <box2d/box2d.h>

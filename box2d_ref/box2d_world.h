@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The reference: a Box2D 2.4 world built from a Scene and stepped the way the scene says.
 //
 // Fixed rotation unless the scene asks for rotation; continuous collision against static and

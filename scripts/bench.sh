@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs the Google Benchmark suite (build/bin/chainbench_bench), keeps its JSON in
 # results/bench.json and regenerates README.md's results tables from it, each row's error beside
 # its speed (one accuracy run of each row's scene, results/bench_runs/). Takes about a quarter of

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Turns chainbench_bench's JSON (--benchmark_format=json) into the README's results tables.
 
     scripts/bench_table.py results/bench.json                 print the tables

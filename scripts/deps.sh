@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs the Debian packages chainbench needs, and only those that are missing.
 #   scripts/deps.sh build   compilers, CMake, Ninja, Box2D, Chipmunk2D, GoogleTest, Google Benchmark,
 #                           CLI11, JSON,

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs the libFuzzer targets (tests/fuzz/): world (the solver), scene_file (the scene loader),
 # plugin (what a plugin hands back), each from its corpus in tests/fuzz/corpus/<target>/.
 #

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Plots chainbench's results as PNG files (and SVG with --svg).
 
     plot.py sweep   SWEEP_JSON [--out DIR]   per scene, accuracy against cost of every engine setting

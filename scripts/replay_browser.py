@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Opens chainbench replay pages in headless Chromium (Debian's chromium, driven through the
 DevTools protocol on a pipe: no network, no other package), plays each to its last step, saves a
 screenshot and prints how long opening and playing took.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes RESULTS/report.md from what scripts/run.sh left in RESULTS/: the run JSON of every
 scene, the stress and sweep JSON, the benchmark JSON, the plots and the replay pages with their
 screenshots. One page: a conclusion computed from the data, then tables and plots inline.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The conclusion that opens results/report.md, computed from the suite's results: which engine to
 pick for what (speed, the scenes' stated right answers, where each breaks), each sentence with the
 figures behind it. Engines are the labels chainbench wrote into its outputs; the engine under test

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs what is missing, builds, runs the default comparison suite and writes results/:
 #   results/runs/<scene>.{json,csv}    chainbench run, every engine with sleeping off and on,
 #                                      every default scene (the moving ones included) and

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Renders a chainbench.stress/1 JSON as Markdown: a grid of verdicts (case x engine) and, for each
 engine, the cases where it is not ok and why. With --readme it rewrites README.md's stress results
 between the <!-- stress:begin --> and <!-- stress:end --> markers; otherwise it prints them.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs what is missing, builds with a CMake preset (release unless named) and runs every
 # test with ctest, printing the output of any test that fails.
 #   scripts/test.sh          release preset, build/

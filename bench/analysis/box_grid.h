@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A uniform grid over a fixed set of axis-aligned boxes, for finding every box that touches a
 // query box in time proportional to the cells the query covers and the boxes in them, instead of
 // to all the boxes: what keeps a query per cluster, body or pair linear in the scene.

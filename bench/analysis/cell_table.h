@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The hashed uniform grid shared by BoxGrid and PairScan: boxes held in every cell they cover, and
 // the walks that find which held boxes touch a query box, or each other, each pair once.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "expect_relations.h"
 
 #include "text_table.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The expectations that relate a body to others (above, below, on, squeezed) and no_overlap
 // limited to named bodies, judged from one state's positions so that every engine can be checked.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Checks a scene's `expect` entries against one engine's run, state by state.
 //
 // Every entry is judged on the states it names (the final one, or each state of its window) and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "isolated_run.h"
 
 #include "child_process.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // An engine run in a child process of its own (child_process.h), for engines whose code the
 // harness does not own (EngineDef::isolated: plugins): a crash, a hang, an exit without a
 // result or an error once it steps becomes the run's verdict (crash, hang or error, with the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // When each body of a scene enters and leaves the world (SceneBody::from_step, to_step), decided
 // once so that the runner and the benchmark add and remove the same bodies at the same steps.
 #pragma once

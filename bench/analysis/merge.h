@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `chainbench merge`: joins the parts of a sharded sweep or stress run (shard.h) into the JSON the
 // unsharded command writes: the same keys in the same order, every point or run in its place.
 // Timings are each part's own, and a sweep's Pareto marks are computed again over the whole.

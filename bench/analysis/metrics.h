@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The metrics of a run, computed by the harness from positions and velocities, the same way for
 // every engine. Only what is selected is computed: with nothing selected a run steps bare.
 #pragma once

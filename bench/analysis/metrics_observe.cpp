@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // MetricsRecorder::observe: the per-step half of the metrics, at a cost that follows what moved.
 //
 // Every figure of a step depends on the positions, angles and velocities of the bodies in it and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "motion_bounds.h"
 
 #include "box_grid.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a scene lets its bodies do: how fast and how far each dynamic body may move, from what
 // gravity, drivers, kinematic bodies, initial speeds and bounces can give it, and how far the
 // overlaps the scene starts with may push it. The stability verdicts (blow-up, escape) are

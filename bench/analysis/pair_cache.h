@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The pairs of bodies whose swept boxes touch, for the steps in which bodies move, found without
 // building a grid every step.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Finds the pairs of bodies that may touch during a step, from positions alone, never from what an
 // engine reports: every pair (at least one of them dynamic) whose boxes, each swept from where it
 // was before the step to where it is after, overlap or touch. Penetration, tunnelling and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "position_stream.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The positions of a replay page (replay_page.h), compact: each body's centre after each step as
 // a whole number of quanta from its initial centre, and only the bodies whose number changed
 // since the last state written. A body at rest costs nothing; one in motion about three bytes a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Which bodies are in the world in each state of a run (SceneBody::alive: body i is in states
 // from_step..to_step), followed state by state at the cost of the bodies that enter or leave.
 // The metrics, the trace and the replay page see a body only while it is in the world.

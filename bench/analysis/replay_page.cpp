@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "replay_page.h"
 
 #include "input_error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A replay page: one self-contained HTML file (its data and script inline, nothing fetched) that
 // plays every engine's run of a scene over the others, with the charts of their error,
 // energy-free displacement and penetration at every step, the scene's expectations, and each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "replay_recorder.h"
 
 #include "metrics.h"

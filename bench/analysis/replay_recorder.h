@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a replay page (replay_page.h) shows of each engine's run, gathered while the runs step:
 // an observer (step_observer.h) given to every run of `run --replay` and `replay`. Per engine it
 // keeps the positions (position_stream.h, quantised), the chart's series at every step in full

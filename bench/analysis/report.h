@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What `chainbench run` reports: a table for people, JSON (chainbench.run/1,
 // docs/output-formats.md §2) and CSV (§3) for tools.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Runs one engine on one scene: builds it (timed as setup), steps it (each step timed on the
 // steady clock, the first excluded), records the metrics that were asked for, checks the scene's
 // expectations (always: they are the truth a run is judged by) and judges the run. Metrics,

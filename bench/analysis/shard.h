@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One part of a sweep grid or stress matrix, run where the user sends it (`--shard K/N`): the
 // units of the whole (sweep points, stress case x engine runs, numbered from 0 in the order the
 // unsharded command runs them) whose number u has u % N == K - 1. A part's JSON holds the

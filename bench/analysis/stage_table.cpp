@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "stage_table.h"
 
 #include "text_table.h"

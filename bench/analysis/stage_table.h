@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `chainbench run --profile`: each engine's step split into the stages the engine itself times
 // (Engine::stages), beside the harness's timing of the same steps.
 #pragma once

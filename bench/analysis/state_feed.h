@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // An engine's state before and after each step the harness looks at, read so that what a step
 // left unchanged costs nothing to copy. Where the engine lists what changed
 // (Engine::read_changes), only those bodies are copied into the state before the next step and

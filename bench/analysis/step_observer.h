@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a run shows its observers after every step (the trace CSV, the replay page): the state,
 // the harness' per-body measures of that step, and the engine's own counters and events. With no
 // observer a run reads nothing it does not need; with one, it reads every step's state back.

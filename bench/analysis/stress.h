@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The stiff and extreme cases of `chainbench stress`: a matrix of scenes, each run in every
 // engine in a child process of its own (a crash or a hang is a verdict, not the end of the
 // run), each judged as every run is (verdict.h) against the right answer its scene states.

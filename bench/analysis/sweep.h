@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Error against run time: one scene run over a grid of engine settings, each point measured
 // against a reference more accurate than any point (or against the scene's expectations), and
 // the points on the Pareto front of (ms/step, error) marked.

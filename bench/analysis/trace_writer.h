@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The trace CSV of `chainbench run --trace`: every body's state after every step, in a form that
 // stays small for big scenes (README.md, "The trace CSV"):
 //   engine,step,body,x,y,vx,vy,angle,displacement,penetration

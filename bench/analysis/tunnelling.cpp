@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "tunnelling.h"
 
 #include <algorithm>

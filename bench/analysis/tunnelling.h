@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Tunnelling: a body passing through another, judged from positions alone.
 //
 // Two solid boxes can meet, press into each other and part, but the centre of one never goes into

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Verdicts: what a run did, in words a user can trust. `ok` means physically right (every check
 // below passed), not merely finite.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What chainbench_bench times: scene families, each a built-in scene at a list of sizes, how its
 // steps are timed, and which of them the results tables treat as moving scenes or scaling series.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The least a harness that judges pairs every step can cost: reading the state back, and the
 // tunnel check and overlap depth of every pair with a body that moved in the step; nothing else
 // (no search for the pairs, no bookkeeping). Timed beside the bare step (harness/FAMILY/SIZE/

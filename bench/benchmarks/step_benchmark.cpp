@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // chainbench_bench: time per step of each engine on the built-in scenes.
 //
 // Each benchmark builds its scene and engine, steps it through a warm-up (the world settles and

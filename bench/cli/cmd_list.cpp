@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // chainbench list, chainbench engines: what can be run, and with which keys.
 #include "commands.h"
 #include "engine_spec.h"

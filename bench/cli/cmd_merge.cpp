@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // chainbench merge: joins the parts of a sharded sweep or stress run (merge.h).
 #include "commands.h"
 #include "input_error.h"

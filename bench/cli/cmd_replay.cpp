@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // chainbench replay: one scene in several engines, written as a page that plays them
 // (replay_page.h); `run --replay FILE` writes the same page beside run's other outputs.
 #include "commands.h"

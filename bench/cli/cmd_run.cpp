@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // chainbench run: one scene in several engines, side by side.
 #include "commands.h"
 #include "engine_choice.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // chainbench stress: the stiff and extreme cases, in every engine, with verdicts.
 #include "commands.h"
 #include "engine_choice.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // chainbench sweep: error against run time over a grid of engine settings.
 #include "commands.h"
 #include "engine_choice.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The subcommands of the chainbench command. Each adds itself to the app; its callback does the
 // work and leaves the exit status in *status.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Which engines a command runs: the list the user gave, every one of which must be able to run
 // every scene (else InputError, before anything runs), or, with no list or with the entry
 // `defaults`, every registered engine's defaults that can, with a note for each one left out.

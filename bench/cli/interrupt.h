@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Ctrl-C while a command measures: the command stops after the work under way, keeps what
 // finished, writes it and exits 130. While an Interrupt lives, SIGINT sets its flag instead of
 // ending the process; the handler before it (output_file.h's, which removes temporaries) comes

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // chainbench: runs the collision-chaining solver and rigid-body engines on the same scenes and
 // compares them.
 // Exit status: 0 done; 2 bad input or usage; 3 `run --require` not met; 1 an output file that

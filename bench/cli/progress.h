@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A progress line on stderr, drawn only when stderr is a terminal (never in logs or CI output).
 #pragma once
 

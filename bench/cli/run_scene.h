@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One scene in several engines, as `run` and `replay` both do it: what the user asked for, and
 // the function that runs it, prints the table and writes the files asked for.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Checks of numeric option values whose messages say what is wrong: CLI11's own Range reports a
 // value that is not a number at all as "not in range".
 #pragma once

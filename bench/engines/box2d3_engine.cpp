@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Box2D v3 (an installed release, found by CMake: box2d3/CMakeLists.txt) behind the Engine
 // interface.
 //

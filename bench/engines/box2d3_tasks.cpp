@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "box2d3_tasks.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The box2d3 adapter's task system: what Box2D v3 calls through b2WorldDef's enqueueTask and
 // finishTask when it is given more than one worker. A fixed pool of threads - 1 std::threads plus
 // the calling thread runs parallel-for tasks; the results depend only on Box2D, which partitions

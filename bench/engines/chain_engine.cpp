@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The collision-chaining solver of solver/ behind the Engine interface.
 #include "drive_schedule.h"
 #include "registry.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Chipmunk2D 7 (Debian libchipmunk) behind the Engine interface: a second reference engine.
 //
 // Boxes are box shapes without rounding; rotation is fixed by an infinite moment unless the scene

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // One interface over every engine: built from a scene and a spec (registry.h), stepped, read back.
 // A call per step, never per body: adapters keep their own state in their engine's layout.
 #pragma once

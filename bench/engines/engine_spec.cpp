@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "engine_spec.h"
 
 #include "input_error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Engine specs: "NAME[:key=value,key=value...]", e.g. "chain:variant=seed2014" or
 // "chain:velocity=zero,max_passes=8". A parsed spec holds every key its engine declares
 // (registry.h), defaults filled in, so its canonical string names exactly what ran; a spec travels

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A user's own resolver, loaded from a shared library through the C ABI of
 // bench/include/chainbench/engine_plugin.h: `plugin:path=FILE[,key=value...]`.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The plugin engine (`plugin:path=FILE`) over a table already in memory: what a loaded library's
 // chainbench_engine_plugin() returns, checked and used exactly as for a library. The plugin fuzz
 // target (tests/fuzz/plugin_fuzz.cpp) drives it with a fake plugin whose every return comes from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // How a plugin library that dies while it is loaded is met (bench/engines/plugin_engine.cpp loads
 // every library in a child process first): refused by path, or kept for `stress`.
 #pragma once

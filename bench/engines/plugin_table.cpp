@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "plugin_table.h"
 
 #include "engine_spec.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A plugin's table (chainbench/engine_plugin.h) checked field by field before chainbench uses any
 // of it: its ABI and size, name, functions, capabilities, counters and declared keys, every string
 // read within its bound (plugin_text.h). A bad table is an InputError naming the plugin, the field

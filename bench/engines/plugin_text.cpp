@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "plugin_text.h"
 
 #include <chainbench/engine_plugin.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Strings and figures a plugin hands back, checked before chainbench keeps or prints any of them.
 // A plugin's memory is not chainbench's: a string is read within a bound (never past it, so an
 // unterminated one is a refusal, not an overread), and only printable ASCII is echoed, cut short,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The engines chainbench can run. Each adapter file registers one engine (its name, keys,
 // capabilities, counters, defaults and factory), and nothing else in the harness names an engine:
 // spec parsing, `chainbench engines`, default engine lists, sweep grids, benchmarks and reports all

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "drive_schedule.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Which drives a scene holds at each step, decided once here so that every engine applies the
 // same ones: per driven body, the last of its drivers active at that step wins.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The scene model: one description of boxes, drives and expectations that every engine is built
 // from. Plain data in metres, kilograms and seconds, y up; body order is body identity.
 #pragma once

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Writes OUT: a C++ source that defines the replay page's assets (replay_assets.h) from the files
 # in this folder, each cut into string literals of at most 16,000 bytes (ISO C++ promises
 # compilers 65,536). Run at build time whenever one of the files changes:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The replay page's template, style and script (the files beside this header), compiled into
 // the chainbench command by CMake (embed.cmake), so that writing a page needs no other file.
 #pragma once

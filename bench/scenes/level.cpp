@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Level scenes: what a platformer's levels ask of a resolver. Tile floors with seams, fast falling
 // crates, a character walking off a ledge, a crate riding a moving platform and one sliding on a
 // rough floor. Metres, gravity (0, -10), dt 1/60 unless set; each states its analytic answer.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Moving scenes: worlds in which every engine must work each step, for the benchmark's fair race
 // (README, Benchmarks). Each repeats a small event across the scene, so that it scales with one
 // size parameter and keeps its character, and states where every body is at the end, with the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A random sequence that is the same on every platform and standard library (std::
 // distributions are not), so that seeded scenes are the same scenes everywhere.
 #pragma once

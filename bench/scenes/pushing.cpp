@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pushing scenes: a driven body shoving others, top-down and side-on, and a squeeze.
 #include "scene_library.h"
 

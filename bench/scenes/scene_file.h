@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scene files: the JSON format of docs/scene-format.md (schema 1), read with nlohmann-json.
 #pragma once
 

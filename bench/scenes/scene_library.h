@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The built-in scenes: parametric recipes, each declaring only what it needs (no gravity in a
 // top-down push, no friction where none matters, no rotation unless asked).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The text of a scene file beyond what JSON itself requires: the file's bytes as a whole, and each
 // string field (a scene's, body's or expectation's name, a description, a type). A name reaches
 // the run table, findings, CSV, traces and replay pages, so it must be text a terminal and a CSV

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "scene_vary.h"
 
 #include "input_error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `sweep --vary KEY=v1,v2,...`: one built-in scene built once for each value of one of its
 // parameters (the time step first of all), so that error and cost can be read against it.
 #pragma once

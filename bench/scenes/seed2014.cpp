@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The 2014 engine's own test scenes (docs/algorithm-2014.md §7; conversions §1), from px/frame
 // with y down to metres and seconds with y up: 50 px = 1 m (the engine's 50 px boxes are 1 m),
 // 60 frames a second, so gravity 0.25 px/frame^2 becomes 18 m/s^2. Positions in the original

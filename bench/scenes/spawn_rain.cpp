@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // spawn_rain: bodies that come and go, in the spirit of Box2D's own rain benchmark. Every
 // `period` steps a wave of boxes enters the world over a floor of static tiles, and once `waves`
 // waves are in it the oldest leaves as the next enters, so the world holds about

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Stacking scenes: boxes resting on boxes under gravity.
 #include "portable_random.h"
 #include "scene_library.h"

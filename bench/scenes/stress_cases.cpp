@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Stress scenes: fast bodies, deep overlaps and squeezes, for `chainbench stress`.
 #include "portable_random.h"
 #include "scene_library.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Work run in a forked child with a time limit: a crash, an abnormal exit or a hang in it becomes
 // an outcome the caller reports, instead of the end of the caller.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bad input from the user: a scene file, a --set, an engine spec, a command-line number. The
 // message names the source, the field and the reason; the command exits with status 2.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The files a command writes (--json, --csv, --trace, --replay, merge's --json), each whole or
 // not at all: the text goes to a temporary file beside the target, which commit_outputs() renames
 // over it once everything is written. Until then the target keeps what it held (or stays

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """What every plot of scripts/plot.py shares: the InputError that bad input raises, the late
 matplotlib import, writing a figure, reading JSON and numbers, engine labels (as chainbench writes
 them into its outputs: nothing here knows an engine's defaults), one marker and colour per engine,

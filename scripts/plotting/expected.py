@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Where a scene's expectations (its "expect" entries in a chainbench.run/1 JSON) put its bodies:
 expected centres with their tolerance, and bounds on centres, for drawing over final states.
 """

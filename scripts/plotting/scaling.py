@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The scaling plot: time per step against body count, from chainbench_bench's Google Benchmark
 JSON, one line per scene family and engine, with guides of constant cost per body and step.
 """

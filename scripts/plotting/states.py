@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The states plot: the final boxes of every engine in a chainbench.run/1 JSON (and of its
 reference run) drawn over each other, so that where the engines disagree shows at a glance; the
 expected centres and bounds of the scene's expectations; the bodies' names where they fit; and,

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The sweep plot: for each scene of a chainbench.sweep/1 JSON, the final-position error of every
 engine setting against its time per step, with the Pareto front and the reference engine's time.
 """

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The trace plot: from a chainbench trace CSV, the energy-free displacement and the deepest
 penetration of each step over simulated time, one line per engine.
 """

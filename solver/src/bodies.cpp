@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "bodies.h"
 
 #include <algorithm>

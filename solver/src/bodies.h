@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Body storage: structure of arrays in solve order.
 //
 // Solve order is the order every loop of a step follows. It is derived from the bodies

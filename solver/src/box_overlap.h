@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The overlap test of the near-list walks.
 //
 // A step tests every near pair at least twice (the contacts, then the walls' walk), and most

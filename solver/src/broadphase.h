@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Broadphase: uniform grids over body centres, one per size class, rebuilt by a counting sort at
 // every sweep.
 //

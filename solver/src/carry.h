@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bodies that a fast kinematic body carries keep their order along its motion.
 //
 // The sweep (sweep.h) places a body that a fast kinematic body reaches against that body's face

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The modern resolver's contacts: finding the overlapping pairs of a sweep, and the order they
 // are resolved in (shock propagation outward from immovable bodies; each body's immovable contacts
 // in the order it entered them).

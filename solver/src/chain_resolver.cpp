@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "chain_resolver.h"
 
 #include "entry_face.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The modern collision-chaining resolver.
 //
 // Fast bodies are swept first (sweep.h). Then a sweep finds every overlapping pair and resolves

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // State the modern resolver's chains share within a step: which bodies a chain has reached,
 // which are supported by the immovable level (and from which side), which are crushed, the near
 // pairs of the sweep, the flags that say whether another sweep is needed, and the order in which

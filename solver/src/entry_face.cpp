@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "entry_face.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The face of a static or kinematic body that a dynamic body came in through.
 //
 // Least-overlap push-out goes wrong against immovable bodies in two ways. At the join of two flush

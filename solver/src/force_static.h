@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Force-static propagation. Once a chain meets something immovable, the body it pushed acts as a
 // wall: every dynamic body it now overlaps on its free side along the chaining axis is pushed
 // fully out of it, is supported from that side, and becomes a wall in turn, breadth first, so

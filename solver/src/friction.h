@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Coulomb friction for the modern variant, after the velocity rule.
 //
 // Every push of the step is a contact along its axis (the normal); friction acts along the other

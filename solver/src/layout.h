@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // When the bodies are renumbered after the first Z-order.
 //
 // canonicalize() puts bodies close in space close in memory, but not in the order a step visits

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "seed2014_resolver.h"
 
 #include <algorithm>

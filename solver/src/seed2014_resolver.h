@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The 2014 engine's collision chaining, as docs/algorithm-2014.md §2 describes it (its code at
 // commit bc64bd3, §0), converted to metres with y up. Kept on purpose, each marked QUIRK in the
 // source: the push direction chosen from box edges rather than centres, touching counted as

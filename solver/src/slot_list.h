@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A list of body slots appended to without a capacity check per element.
 //
 // Room is made first (room_for, which grows the list out of line when it must) and push() then

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Times the stages of a step for StepProfile: each lap adds the time since the last one to a
 // stage. Off, it reads no clock, so a step that is not profiled pays a branch a stage.
 #pragma once

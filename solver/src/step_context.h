@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a resolver works on during one step, and the moves every resolver makes the same way.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Continuous collision for the modern variant: the bodies that moved far for their size this
 // step are swept along their paths before push-out, so none passes through another.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Input checks shared by validate() and the World functions that take numbers.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "velocity_response.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The inelastic velocity rule.
 //
 // Every push between two bodies is recorded as a link along its axis. After the pushes of a

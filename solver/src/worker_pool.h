@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Worker threads for the parts of a step whose work splits into independent tasks.
 //
 // A task is a fixed block of bodies (or one axis), never a share of the threads: which task

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include <chain/world.h>
 
 #include "bodies.h"

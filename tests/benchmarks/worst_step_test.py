@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Runs chainbench_bench on two small families, one at rest and one moving, and checks that each
 benchmark reports its slowest step beside its median (counters step_ms_max and step_ms_median,
 ms): present, finite, max >= median > 0, and max at least the mean time the benchmark reports (the

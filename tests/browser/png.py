@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Reads the pixels of a PNG file, as Chromium writes its screenshots (8-bit RGB or RGBA, not
 interlaced), with the standard library alone."""
 import struct

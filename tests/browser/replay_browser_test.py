@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The replay page in a real browser: chainbench runs a small scene in every default engine and
 writes its run JSON, trace and replay page; headless Chromium opens the page, plays it to the
 last step, and the page must then show, for named bodies, exactly the final centres the run JSON

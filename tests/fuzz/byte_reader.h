@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Turns a fuzzer's bytes into bounded numbers. Past the end it returns zeros, so every input,
 // however short, describes a complete (small) case.
 #pragma once

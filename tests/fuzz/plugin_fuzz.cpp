@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzzes what a plugin hands back. A fake plugin, whose table (ABI, size, name, capabilities,
 // counters, declared keys, null functions) and every return (worlds, error texts, step codes, body
 // counts, states, counter values) come from the fuzzer's bytes, is driven through the plugin engine

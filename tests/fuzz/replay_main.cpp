@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Replays fuzz inputs without libFuzzer, so that every build (and the sanitizer build) runs the
 // fuzz targets on their corpus: each argument is a file, or a directory whose files are replayed
 // in name order.

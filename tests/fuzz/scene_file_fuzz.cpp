@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzzes the scene-file loader. Any text must either be refused with an InputError or load as
 // a scene that every engine can build and step a few times with finite results.
 #include "input_error.h"

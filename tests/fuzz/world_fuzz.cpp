@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzzes the chaining solver with small random worlds of boxes, stepped a few times (now and
 // then a few dozen).
 // For every valid world: each step returns, positions stay finite, static bodies never move, and

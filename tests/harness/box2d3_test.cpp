@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The box2d3 engine (Box2D v3), registered only when chainbench is built against an installed v3:
 // it rests the built-in stack within the scene's answer, counts the contacts of the large
 // pyramid as Box2D's own writing does, gives the same bits on any thread count, and its task pool

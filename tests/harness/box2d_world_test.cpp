@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The Box2D reference: skin compensation, the position solver as the only energy-free
 // displacement, exact masses, kinematic bodies and drivers.
 #include "box2d_world.h"

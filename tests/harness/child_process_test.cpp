@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Work in a child process: its result comes back, and its death or its hang is an outcome.
 #include "child_process.h"
 #include "stress.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `chainbench engines [SPEC]`: what each engine takes, can do and counts, in tables that fit a
 // terminal 100 columns wide.
 #include "cli_run.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The chainbench command under faults: outputs written whole or not at all, outputs that would
 // replace an input, Ctrl-C, a standard output that cannot be written, and plugins that crash,
 // abort, hang or exit in the middle of a run.

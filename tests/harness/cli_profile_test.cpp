@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `chainbench run --profile`: each engine's own timing of its step's stages, printed after the
 // table and written to the JSON as stages_ms, over the same steps as ms_per_step.
 #include "cli_run.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Calls the chainbench command refuses: each exits with status 2 and says why.
 #include "cli_run.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Running the chainbench command from a test: its exit status and what it printed. Shared by the
 // cli_tests sources (cli_test.cpp, cli_faults_test.cpp, cli_refused_test.cpp).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The chainbench command end to end: exit statuses, messages, and the JSON of `run`.
 #include "cli_run.h"
 

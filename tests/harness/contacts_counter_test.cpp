@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The reference engines' contacts counter counts touching pairs, each once, awake or asleep: the
 // benchmark reports it as the work each engine does per step.
 #include "registry.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The drive schedule follows events, not every driver each step: whatever the drivers (several
 // per body, overlapping, empty, never ending), the drives it holds, the drives it reports begun
 // or changed and the bodies it reports released are at every step those a scan of every driver

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Engine specs parse to canonical strings, fill defaults, and refuse what they do not know.
 #include "engine_spec.h"
 #include "input_error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The expectations that relate bodies (above, below, on, squeezed), no_overlap among named bodies
 // and per-body penetration tolerances: each holds on a correct run and fails on a wrong one (a
 // state placed by hand where an engine could not be made to fail on purpose), and the scene file

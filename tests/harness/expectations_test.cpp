@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Expectations: every kind judged on the states it names, its worst state traced to a body and a
 // step, with figures worked out by hand.
 #include "runner.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A plugin's run comes back from its child process (isolated_run.h) as bytes: what comes back must
 // be the run itself, every field of it, so that no figure, expectation result or verdict of an
 // isolated engine differs from what the same engine gives in process. The comparison is

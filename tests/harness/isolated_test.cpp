@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Work in a child process (bench/support/child_process.h) against a child, or a plugin in it,
 // that fights back: a result pipe closed early or held open by a process the child left behind,
 // descriptors of the caller's files within reach, memory without end, and a plugin whose step

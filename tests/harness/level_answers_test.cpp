@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The level scenes' right answers admit every sound discretisation: an engine that moves as the
 // physics says meets them whatever the speed and time step, including a character whose edge
 // reaches the ledge exactly at a step and a friction stop shorter than one step's travel.

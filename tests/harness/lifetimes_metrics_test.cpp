@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The metrics see a body only while it is in the world (metrics.h, presence.h): a scene whose
 // bodies come and go gives the figures of the same scene with only the bodies present, whatever
 // the states hold for a body outside its life (deep in the floor, inside a moving box, thrown far

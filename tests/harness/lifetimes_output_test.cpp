@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a run shows of bodies that come and go: the run JSON gives no final position for a body
 // out of the world at the end (null) and carries each body's from_step/to_step; the trace has a
 // body's rows only while it is in the world and a row with empty values when it leaves; the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bodies that come and go (SceneBody::from_step, to_step): a scene file whose bodies enter and
 // leave runs in every engine that adds and removes bodies with the right answer, a window outside
 // a body's life is refused, plugins without CB_CAN_LIFETIMES are refused by name, spawn_rain meets

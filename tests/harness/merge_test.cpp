@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shards and merging: which units a part runs, and how parts join (or are refused).
 #include "merge.h"
 #include "input_error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The metrics' shortcuts give the figures of a full scan: on random scenes in which every step
 // moves no body, a few or most, the recorder that re-judges only the pairs with a moved body
 // (told which bodies changed, or finding them itself) agrees to the bit with one that scans every

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Each metric on cases small enough to compute by hand.
 #include "metrics.h"
 #include "pair_scan.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The moving scenes (bench/scenes/moving.cpp) and the stack wall: each builds a valid scene that
 // states where every dynamic body ends, scales with its size parameter, states the answers its
 // recipe derives, and the modern solver meets them, as Box2D does at these sizes.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Output files, whole or not at all: the target changes only when an output is committed, keeps
 // its mode and its symbolic link, and no temporary outlives its output.
 #include "output_file.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A PairCache lists the pairs a grid built afresh every step would find: on a field of boxes that
 // drift at steady speeds (the cache keeps its list), start and stop, and now and then jump far or
 // turn non-finite, or are thrown so far that their boxes are giants (it refits those bodies, or

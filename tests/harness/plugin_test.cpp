@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Plugins: a user's resolver in a shared library (chainbench/engine_plugin.h). A ballistic test
 // plugin written in C shows that the scene, the drivers and the counters cross the C ABI intact
 // (its free fall matches the analytic answer), and one build of it per fault shows that every way

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The engine registry: every adapter's declaration is consistent (keys, defaults, grids, gates
 // and benchmarks all parse), and every capability an engine claims is physically there, while a
 // scene that needs one it lacks is refused by name instead of run wrong.

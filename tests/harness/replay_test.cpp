@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Replay pages: the position stream round-trips within half a quantum, keeps bodies at rest out
 // and decimates to the states it names; the recorder measures every engine from the reference
 // at every step; the page holds its data inline, fits its size limit and marks what failed.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The runner: timing samples, metrics only when asked, chain statistics, expectations, traces.
 #include "runner.h"
 #include "scene_library.h"

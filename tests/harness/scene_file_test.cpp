@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scene files: a valid file reads as written; every class of bad input is refused with the file,
 // the JSON path and the reason.
 #include "scene_file.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Built-in scenes: every one builds a valid scene with its defaults; --set is checked before
 // anything is built.
 #include "scene_library.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A scene file's text (scene_text.h): every string field refused, naming file, field and reason,
 // when it holds control characters or bytes that are not UTF-8 or is longer than a name may be;
 // a NUL byte or a UTF-16 byte order mark refused; a UTF-8 byte order mark skipped; and no message

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sweep --vary: one built-in scene built once per value of a parameter.
 #include "scene_vary.h"
 #include "input_error.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A StateFeed holds exactly what reading the whole state every step gives, before and after each
 // step, and where the engine lists its changes (the chain engine), the list is exactly the bodies
 // whose bits changed; the metrics computed from those lists are those of a full scan.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The stress matrix and its verdicts: every case builds with its right answer, the groups are all
 // there, and the child-process verdicts see wrong results, tunnelling, errors and hangs for what
 // they are.

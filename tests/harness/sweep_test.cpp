@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sweeps: the Pareto front calls a point faster only by more than the timing spread.
 #include "sweep.h"
 

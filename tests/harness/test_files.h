@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Files for tests that write and read outputs: a folder of a test's own, and a file's bytes.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Verdicts that say what failed and by how much: a bullet run along a seam is tunnelled, a scene
 // faster than an engine allows says so, metres and m/s are kept apart, and a near miss is told
 // from a clear one.

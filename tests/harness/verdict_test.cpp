@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Verdicts that tell the physical truth, on scene files under tests/scenes/verdicts/ that state
 // their analytic answers: each engine is judged right or wrong by physics, never by another
 // engine.

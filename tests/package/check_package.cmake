@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Configures, builds and installs the solver folder on its own (no Box2D, GoogleTest or Google
 # Benchmark anywhere), then configures, builds and runs a consumer project, compiled as C++17,
 # that finds it with find_package(chainbench). Run by ctest (script mode).

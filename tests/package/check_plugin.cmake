@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # "Bring your own resolver", as README gives it: install chainbench into a scratch prefix and the
 # plugin header's package alone (bench/include/) into another; build the example plugin out of
 # tree against the header alone, where no package or library the harness is built with can be

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Copies the solver folder into a C++17 game project that has no VERSION, builds and runs it; then
 # checks that the vendored solver installs nothing by default, and that when asked to install it
 # stamps its own version on the package, not the game's. Run by ctest (script mode).

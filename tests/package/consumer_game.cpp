@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a C++17 game does with the solver: both public headers, a driven player pushing a box, a
 // character walking with x held, friction, and the C++17 views. Exits 0 when all went as expected.
 #include <chain/types.h>

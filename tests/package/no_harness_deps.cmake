@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Included after project() of a plugin's build (CMAKE_PROJECT_INCLUDE) by check_plugin.cmake:
 # fails unless every package and library the harness is built with is out of reach, so that a
 # plugin that configures and builds beside it is shown to need none of them.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Tests scripts/plot.py (and its package, scripts/plotting/) on small synthetic inputs of each
 format, without chainbench.
 

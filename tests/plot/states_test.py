@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Tests the states plot (scripts/plotting/states.py, expected.py) on a synthetic squeeze: the
 whole scene in view, expected centres and bounds drawn, bodies named where they fit, and the
 per-body panel where the drawing cannot show the engines' differences.

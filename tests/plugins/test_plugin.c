@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 /* A plugin for chainbench's own tests, in C to prove the ABI is plain C. Without a fault it is a
  * ballistic integrator (semi-implicit Euler, no collisions), whose free fall the tests compare
  * with the analytic answer. Built once per fault: TEST_PLUGIN_FAULT selects what goes wrong. */

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Tests scripts/report.py on a small synthetic results folder: the report opens with a conclusion
 whose figures come from the data, explains its columns, shows the stress verdicts as a grid, and
 links each scene's replay page with its screenshot inline.

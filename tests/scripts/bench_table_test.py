@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Tests scripts/bench_table.py on a synthetic Google Benchmark JSON: rows follow the benchmark's
 order, scenes are named with the settings their family uses, the ratio is reference over subject
 from the same run, and with accuracy runs each row carries its error and who meets the answer;

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # scripts/fuzz.sh's arguments, checked before it builds anything: --help and -h print the usage
 # and exit 0; a target is matched whole (one argument holding two names is no target) and may be
 # given once.

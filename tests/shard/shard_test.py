@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Sharded runs join into what the unsharded command writes: a sweep of two scenes (one judged
 by its expectations, one against a reference engine) run in 3 parts by GNU parallel and a quick
 stress subset in 2 parts, each merged with `chainbench merge` and compared with the unsharded

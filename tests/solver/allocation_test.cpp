@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Once warmed up, a step allocates nothing: every buffer keeps its capacity from step to step.
 // This executable replaces the global operator new to count allocations while a flag is set.
 #include "world_helpers.h"

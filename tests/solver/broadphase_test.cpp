@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The broadphase finds exactly the overlapping pairs a brute-force scan finds, whatever the
 // mix of sizes, and still finds a pair after a push moved a body out of its cell.
 #include "broadphase.h"

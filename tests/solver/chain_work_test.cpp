@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bounded work: pyramids, long chains and dense piles finish every step within the budget, and
 // a pyramid stands.
 #include "world_helpers.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Continuous collision (solver/src/sweep.h): no dynamic body passes through a static or kinematic
 // body at any speed up to kMaxSpeed and any dt, and a fast dynamic body does not pass through the
 // dynamic bodies in its way.

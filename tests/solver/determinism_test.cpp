@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Modern results depend on the bodies, never on the order they were created in, and repeat to
 // the bit. The 2014 variant is order-dependent by design; one test pins that down.
 #include "world_helpers.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Per-axis drives: a drive holds the velocity components it is given and leaves the others to
 // gravity and contacts, as a character controller sets a walking speed and lets the body fall.
 #include "world_helpers.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Coulomb friction (modern variant, solver/src/friction.h), against the analytic answers: a body
 // slipping on a surface decelerates at mu g relative to it, so it slips v^2 / (2 mu g) before it
 // moves with it. Positions are checked within 2 cm after 1 s, velocities to rounding.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // After a step, the modern solver may store its bodies in the order that step reached them, so
 // that the next steps walk memory front to back (solver/src/layout.h). A user must see nothing of
 // it but the speed: every body keeps its id, its state and its flags, and results still depend on

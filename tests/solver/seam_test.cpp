@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Joins between flush immovable boxes (tiles) are one surface to a dynamic box: it neither snags on
 // them nor is pushed sideways by them, in any direction, at any phase, whatever the tiles' widths;
 // and mirror-image scenes give mirror-image results.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The 2014 variant keeps the quirks of docs/algorithm-2014.md §4; these pin them down against
 // hand-worked cases, next to what modern does instead.
 #include "world_helpers.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // World::set_profiling times each stage of a step (StepProfile) and changes no result: a world
 // profiled and one not step to the same bits, in both variants and with every stage at work.
 #include "world_helpers.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // WorldDef::threads spreads the independent parts of a step over worker threads in fixed blocks
 // of bodies: every thread count must give the same bits, step after step, whatever the scene
 // does. And the count is validated like every other setting.

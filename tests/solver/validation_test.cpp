@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bad input is refused when it is added, with a reason that names the field; the world is left
 // as it was.
 #include "world_helpers.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Velocity response: momentum where the inelastic rule must conserve it, the zero rule's
 // stopping, restitution, and kinematic bodies that carry what they push.
 #include "world_helpers.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The worked examples of the 2014 design (docs/algorithm-2014.md §3; conversions §1), converted
 // from px/frame to metres and seconds, checked in both variants unless the example is modern-only.
 #include "world_helpers.h"

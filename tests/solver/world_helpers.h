@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Small builders shared by the solver tests: boxes, floors and rows in a few lines.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 /* chainbench engine plugins: put your own collision resolver on the bench.
  *
  * A plugin is a shared library that exports one function, chainbench_engine_plugin(), returning

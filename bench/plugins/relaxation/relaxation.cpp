@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The resolver most people write first, as a chainbench plugin: integrate, then `iterations` times
 // over every overlapping pair push the two boxes apart along the axis of least overlap, split by
 // mass (immovable bodies take none of it), and stop the velocity that points into the push. No

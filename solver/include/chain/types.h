@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Plain data shared by the solver's API: vectors, body kinds, handles, views, per-step reports.
 // Units: metres, kilograms, seconds; y points up. Compiles as C++17 or later.
 #pragma once

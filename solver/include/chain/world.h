@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A world of axis-aligned boxes resolved by collision chaining.
 //
 // Units: metres, kilograms, seconds; y points up. Each step of dt seconds:

@@ -238,13 +238,6 @@ inline bool below_resolution(double value, double magnitude) {
                              : std::numeric_limits<double>::min();
   return std::abs(value) <= 2.0 * ulp;
 }
-// What rounding quantities of magnitude `magnitude` to single precision (as Box2D and most game
-// engines store positions) can add to a difference of them: four float ulps of it, m.
-inline double float_resolution(double magnitude) {
-  const double m = std::abs(magnitude);
-  return std::isfinite(m) ? 4.0 * m * static_cast<double>(std::numeric_limits<float>::epsilon())
-                          : 0.0;
-}
 // The larger absolute coordinate of p: the magnitude a position's rounding is judged against.
 inline double magnitude(Vec2d p) {
   return std::max(std::abs(p.x), std::abs(p.y));

@@ -290,14 +290,10 @@ void MetricsRecorder::visit(const BodyState& before, const BodyState& after, std
       {magnitude(after.position[i]), magnitude(after.position[j]), hi.x + hj.x, hi.y + hj.y});
   if (d <= 0.0 || below_resolution(d, scale)) return;
   // A pair created overlapping may stay as deep as it started while it recovers, but not at
-  // the end of the run. As deep as it started, as an engine holding positions in single precision
-  // places it: the file's doubles rounded to float, which may add a few float ulps of the
-  // coordinates to the depth (two bodies entering together are judged in the state that places
-  // them, before any step has pushed them apart).
+  // the end of the run. Two bodies entering together are not judged in the state that places
+  // them (placed()), as state 0 is not: no step has pushed them apart yet.
   const double base = scene_.pair_penetration_tolerance(i, j);
-  const double start = initial_depth(i, j);
-  const double tolerance =
-      step < scene_.steps && start > 0.0 ? std::max(base, start + float_resolution(scale)) : base;
+  const double tolerance = step < scene_.steps ? std::max(base, initial_depth(i, j)) : base;
   fresh_.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), d, tolerance});
   if (!sel_.penetration || placed(i, j, step)) return;
   // The first step's worst stands against later ones as bad; within a step, the lowest pair.

@@ -158,10 +158,10 @@ EngineRun run_engine(const Scene& scene, const EngineSpec& spec, const RunOption
     // run has no other (a cold figure says more than none).
     if (step > 0) {
       samples.push_back(ms);
-      stage_sums.add(engine->stages());
+      if (options.stages) stage_sums.add(engine->stages());
     } else {
       first_ms = ms;
-      stage_sums.first(engine->stages());
+      if (options.stages) stage_sums.first(engine->stages());
     }
     ++steps_taken;
     const bool degraded = engine->degraded();

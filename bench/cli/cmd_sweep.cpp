@@ -49,10 +49,7 @@ int run(const SweepArgs& a) {
         variants.push_back(SweepVariant{vary.key, vary.texts[k], vary.values[k]});
       }
     }
-    const bool steps_given = std::any_of(sets.begin(), sets.end(), [](const std::string& s) {
-      return s.substr(0, s.find('=')) == "steps";
-    });
-    if (vary.key == "dt" && !steps_given) {
+    if (keeps_simulated_time(vary, sets)) {
       notes.push_back(
           "--vary dt: each run lasts as long as the scene's default run at 1/60 s "
           "(steps = default steps / 60 / dt)");

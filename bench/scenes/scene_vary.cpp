@@ -54,14 +54,24 @@ SceneVary parse_vary(const std::string& text) {
   return vary;
 }
 
+namespace {
+
+// `sets` gives `key` a value ("key=...").
+bool sets_key(const std::vector<std::string>& sets, const std::string& key) {
+  return std::any_of(sets.begin(), sets.end(), [&](const std::string& kv) {
+    return kv.compare(0, key.size() + 1, key + "=") == 0;
+  });
+}
+
+}  // namespace
+
+bool keeps_simulated_time(const SceneVary& vary, const std::vector<std::string>& sets) {
+  return vary.key == "dt" && !sets_key(sets, "steps");
+}
+
 Scene make_varied_scene(std::string_view name, const std::vector<std::string>& sets,
                         const SceneVary& vary, std::size_t k) {
-  const auto sets_key = [&](const std::string& key) {
-    return std::any_of(sets.begin(), sets.end(), [&](const std::string& kv) {
-      return kv.compare(0, key.size() + 1, key + "=") == 0;
-    });
-  };
-  if (sets_key(vary.key))
+  if (sets_key(sets, vary.key))
     throw InputError("--vary " + vary.key + ": --set " + vary.key + " gives it a single value too");
   const SceneRecipe* recipe = find_recipe(name);
   if (!recipe) return make_scene(name, sets);  // refused there, naming the scenes
@@ -80,7 +90,7 @@ Scene make_varied_scene(std::string_view name, const std::vector<std::string>& s
   }
   std::vector<std::string> with = sets;
   with.push_back(vary.key + "=" + exact_text(vary.values[k]));
-  if (vary.key == "dt" && !sets_key("steps")) {
+  if (keeps_simulated_time(vary, sets)) {
     const double steps = std::round(recipe->steps * (1.0 / 60.0) / v);
     if (steps > limits::kMaxSteps) {
       throw InputError("--vary dt=" + vary.texts[k] + ": scene " + recipe->name +

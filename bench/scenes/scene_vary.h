@@ -27,4 +27,7 @@ SceneVary parse_vary(const std::string& text);
 Scene make_varied_scene(std::string_view name, const std::vector<std::string>& sets,
                         const SceneVary& vary, std::size_t k);
 
+// Whether make_varied_scene sets each run's steps from its dt: dt varies and `sets` gives no steps.
+bool keeps_simulated_time(const SceneVary& vary, const std::vector<std::string>& sets);
+
 }  // namespace chainbench

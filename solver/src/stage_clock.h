@@ -14,7 +14,6 @@ class StageClock {
   explicit StageClock(bool on) : on_(on) {
     if (on_) start_ = last_ = Clock::now();
   }
-  bool on() const { return on_; }
   // Adds the time since the previous lap (or the start) to `ms`, milliseconds.
   void lap(double& ms) {
     if (!on_) return;

@@ -75,10 +75,6 @@ void Broadphase::configure(const Bodies& bodies) {
   }
   slack_ = levels_.empty() ? 0.0 : 0.25 * levels_.front().small_half;
   refile_ = 0.25 * slack_;
-  double smallest = std::numeric_limits<double>::infinity();
-  for (std::uint32_t i = 0; i < n; ++i)
-    smallest = std::min({smallest, bodies.hx(i), bodies.hy(i)});
-  free_move_ = n == 0 ? 0.0 : 0.1 * smallest;
   for (Level& level : levels_) {
     level.cell = std::max(2.0 * level.small_half + slack_, kMinCell);
     level.inv_cell = 1.0 / level.cell;
@@ -161,8 +157,18 @@ void Broadphase::refile(std::uint32_t body, double x, double y) {
     // slots (of another level, maybe): nothing reads them before build() files every body anew.
     if (built()) level.entries[entry_of_[body]].out = 1;
   }
-  if (epoch_of_[body] <= scan_) ++stale_;
+  if (epoch_of_[body] <= scan_) {
+    if (stale_++ == 0) {
+      stale_lo_ = {std::numeric_limits<double>::infinity(),
+                   std::numeric_limits<double>::infinity()};
+      stale_hi_ = {-stale_lo_.x, -stale_lo_.y};
+    }
+  }
   epoch_of_[body] = scan_ + 1;
+  // Its level's largest half extent stands for its own: no per-body sizes to keep in slot order.
+  const double h = level.small_half;
+  stale_lo_ = {std::min(stale_lo_.x, x - h), std::min(stale_lo_.y, y - h)};
+  stale_hi_ = {std::max(stale_hi_.x, x + h), std::max(stale_hi_.y, y + h)};
   const std::int32_t cx = level.overlay_x(x), cy = level.overlay_y(y);
   overlay_cx_[body] = cx;
   overlay_cy_[body] = cy;

@@ -79,14 +79,21 @@ class Broadphase {
   // Body was filed again since the near pairs were last scanned: its near pairs are out of date,
   // and the other bodies' near pairs may miss it.
   bool stale(std::uint32_t body) const { return in_overlay_[body] && epoch_of_[body] > scan_; }
+  // False when no body filed again since the near pairs were last scanned can now overlap the
+  // box (x +- hx, y +- hy) by more than `tolerance`: the box's overlaps are all among its near
+  // pairs. The test is against a box around every place such a body was filed, grown by the
+  // largest half extent of its level and the refile distance (it moved at most that far since),
+  // so it takes four comparisons however many bodies are stale.
+  bool stale_may_overlap(double x, double y, double hx, double hy, double tolerance) const {
+    const double g = refile_ - tolerance;
+    return stale_ != 0 && x + hx + g > stale_lo_.x && x - hx - g < stale_hi_.x &&
+           y + hy + g > stale_lo_.y && y - hy - g < stale_hi_.y;
+  }
   // Pairs closer than this are near pairs.
   double slack() const { return slack_; }
   // How far a body may move from where it was filed before it is filed again: a quarter of the
   // slack, so that two bodies that both stayed within it closed by less than the slack.
   double refile_distance() const { return refile_; }
-  // A tenth of the smallest half extent of any body: a move shorter than this cannot take a body
-  // from kPushOutShare (step_context.h) of the way to another's centre past it.
-  double free_move() const { return free_move_; }
   // Candidate bodies examined by queries and pair scans since configure(): the broadphase's work.
   std::uint64_t examined() const { return examined_; }
 
@@ -214,10 +221,10 @@ class Broadphase {
   std::vector<std::uint32_t> members_;  // overlay bodies, in the order they entered it
   std::uint64_t scan_ = 0;              // near-pair scans so far
   std::uint32_t stale_ = 0;             // bodies filed again since the last scan
+  Point stale_lo_{}, stale_hi_{};       // around their boxes where they were filed since
   double margin_ = 0.0;                 // largest displacement from where a body is filed
   double slack_ = 0.0;
   double refile_ = 0.0;
-  double free_move_ = 0.0;
   std::uint64_t generation_ = 0;
   std::uint64_t built_generation_ = ~std::uint64_t{0};
   mutable std::uint64_t examined_ = 0;
@@ -396,6 +403,7 @@ template <class Fn>
 void Broadphase::for_each_stale_overlap(const Bodies& bodies, std::uint32_t body, double tolerance,
                                         Fn&& fn) const {
   const double x = bodies.x(body), y = bodies.y(body), hx = bodies.hx(body), hy = bodies.hy(body);
+  if (!stale_may_overlap(x, y, hx, hy, tolerance)) return;
   for (std::size_t l = 0; l < levels_.size(); ++l) {
     const Level& level = levels_[l];
     const double rx = hx + level.small_half + margin_, ry = hy + level.small_half + margin_;

@@ -46,9 +46,9 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
   // bodies alone. A body filed again since the scan takes its pairs from the broadphase, all at
   // its own turn (those with another such body at the later one), and is skipped in near lists.
   contacts_.clear();
+  const Bodies::Box* const box = bodies.box.data();
+  const OverlapTest test(tol);
   if (bp.near_pairs_hold()) {
-    const Bodies::Box* const box = bodies.box.data();
-    const OverlapTest test(tol);
     // With workers: bodies [begin, end) write their contacts to `out`, at most one per entry.
     auto scan = [&](std::uint32_t begin, std::uint32_t end, Pair* out) {
       Pair* o = out;
@@ -90,14 +90,11 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
       });
       continue;
     }
-    const double x = bodies.x(i), y = bodies.y(i), hx = bodies.hx(i), hy = bodies.hy(i);
-    for (const std::uint32_t e : state_.near(i)) {
-      const std::uint32_t j = ChainState::entry_slot(e);
-      if (j < i && (hx + bodies.hx(j)) - std::abs(x - bodies.x(j)) > tol &&
-          (hy + bodies.hy(j)) - std::abs(y - bodies.y(j)) > tol && !bp.stale(j)) {
-        contacts_.push_back({j, i});
-      }
-    }
+    // Its lower near bodies (those of its near list, in that order) that it overlaps, less the
+    // bodies filed again since the scan, which take the pair at their own turn.
+    for_each_hit(box, i, state_.lower(i), test, [&](std::uint32_t j) {
+      if (!bp.stale(j)) contacts_.push_back({j, i});
+    });
   }
 }
 

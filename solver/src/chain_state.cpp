@@ -119,15 +119,13 @@ void ChainState::begin_chain() {
     return std::any_of(out.begin() + from, out.end(),
                        [&](std::uint32_t j) { return b.immovable(j); });
   }
-  // Its near pairs, less the bodies filed again since, which the overlay then gives.
-  const double x = b.x(around), y = b.y(around), hx = b.hx(around), hy = b.hy(around);
-  for (std::uint32_t k = near_start_[around]; k < near_start_[around + 1]; ++k) {
-    const std::uint32_t j = entry_slot(near_[k]);
-    if ((hx + b.hx(j)) - std::abs(x - b.x(j)) > tol &&
-        (hy + b.hy(j)) - std::abs(y - b.y(j)) > tol && !bp.stale(j)) {
-      out.push_back(j);
-    }
-  }
+  // Its near pairs, less the bodies filed again since, which the overlay then gives. The near
+  // list goes through the walks' overlap test, and only its hits are checked for staleness: the
+  // same bodies in the same order as testing staleness first, without reading the broadphase's
+  // per-body marks for every entry.
+  for_each_hit(b.box.data(), around, near(around), OverlapTest(tol), [&](std::uint32_t j) {
+    if (!bp.stale(j)) out.push_back(j);
+  });
   bp.for_each_stale_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
   return std::any_of(out.begin() + from, out.end(),
                      [&](std::uint32_t j) { return b.immovable(j); });

@@ -27,6 +27,8 @@ inline constexpr int kAnyAxis = 2;
 // share keeps clear of both edges, so rounding never decides. The sweep stops fast bodies there
 // (sweep.h), and the modern resolver's moves stop there too (StepContext::move).
 inline constexpr double kPushOutShare = 0.9;
+// The share of a body's half extent it may move unguarded (StepContext::guarded).
+inline constexpr double kFreeMoveShare = 1.0 - kPushOutShare;
 
 struct CrushRecord {
   std::uint32_t body, anchor, blocker;
@@ -55,7 +57,7 @@ struct StepContext {
   // Under the zero rule, a velocity component that points against the move stops, as the 2014
   // engine's updateTransform did.
   double move(std::uint32_t i, int axis, double d, std::uint32_t follower = kNoSlot) {
-    if (guarded(d)) d = limit_move(i, axis, d, follower, nullptr, nullptr);
+    if (guarded(i, axis, d)) d = limit_move(i, axis, d, follower, nullptr, nullptr);
     bodies.pos(axis, i) += d;
     broadphase.note_move(i, bodies.x(i), bodies.y(i));
     if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
@@ -70,7 +72,7 @@ struct StepContext {
   double place(std::uint32_t i, int axis, double target, std::uint32_t follower = kNoSlot,
                bool guard = true, Passes passes = nullptr, const void* arg = nullptr) {
     double d = target - bodies.pos(axis, i);
-    if (guard && guarded(d) &&
+    if (guard && guarded(i, axis, d) &&
         (d = limit_move(i, axis, d, follower, passes, arg)) != target - bodies.pos(axis, i)) {
       bodies.pos(axis, i) += d;
     } else {
@@ -107,9 +109,14 @@ struct StepContext {
                     const void* arg) const;
 
  private:
-  // Moves shorter than this cannot take a body past a centre it is kept clear of by the guard:
-  // only longer ones are checked (resting contacts move far less).
-  bool guarded(double d) const { return guard_moves && std::abs(d) > broadphase.free_move(); }
+  // A move of body i shorter than kFreeMoveShare of its own half extent along the move cannot
+  // take it from kPushOutShare of the way to another body's centre past that centre (from there
+  // the centre is (1 - kPushOutShare) * (both half extents) ahead, at least this far): only longer
+  // moves are checked. Per body, so that a thin shelf elsewhere in the world does not send every
+  // resting contact's move through the broadphase.
+  bool guarded(std::uint32_t i, int axis, double d) const {
+    return guard_moves && std::abs(d) > kFreeMoveShare * bodies.half(axis, i);
+  }
 
  public:
   // Records that `a` was pushed out of `b` along axis, in direction sign (+1 or -1).

@@ -40,8 +40,11 @@ void Broadphase::configure(const Bodies& bodies) {
   next_.assign(n, kNoSlot);
   prev_.assign(n, kNoSlot);
   epoch_of_.assign(n, 0);
+  near_stale_.assign(n, 0);
   members_.clear();
   members_.reserve(n);
+  unmarked_.clear();
+  unmarked_.reserve(std::min<std::size_t>(n, 1024));
   stale_ = 0;
   levels_.clear();
 
@@ -132,6 +135,34 @@ void Broadphase::clear_overlay() {
     level.overlay_members = 0;
   members_.clear();
   stale_ = 0;
+  ++mark_epoch_;
+  unmarked_.clear();
+}
+
+void Broadphase::mark_refiled() const {
+  for (const Filed& f : unmarked_)
+    mark_near(level_of_[f.body], f.x, f.y);
+  unmarked_.clear();
+}
+
+void Broadphase::mark_near(std::size_t l, double x, double y) const {
+  // A grid body k (filed at entry e, now at most margin_ <= refile_ from it) and the body filed at
+  // (x, y) (half extents at most its level's largest, and moving at most refile_ before it is filed
+  // again) can overlap only if their filed places are closer than both half extents and both
+  // refile distances: the test below with a gap of -2 refile_.
+  // Bodies in the overlay that are not stale (filed there before the last scan) are marked the
+  // same way from where they are filed, with their level's largest half extent for their own.
+  const double h = levels_[l].small_half, reach = 2.0 * refile_;
+  for (std::size_t m = 0; m < levels_.size(); ++m) {
+    const Level& level = levels_[m];
+    level.scan(level.cells_near(x, y, h, h, reach), examined_, [&](const Entry& e) {
+      if (!e.out && within(x, y, h, h, e, -reach)) near_stale_[e.body] = mark_epoch_;
+    });
+    const double r = h + level.small_half + reach;
+    scan_overlay(m, x, y, r, r, [&](std::uint32_t k) {
+      if (std::abs(ref_[k].x - x) < r && std::abs(ref_[k].y - y) < r) near_stale_[k] = mark_epoch_;
+    });
+  }
 }
 
 void Broadphase::unlink(std::uint32_t body) {
@@ -178,6 +209,7 @@ void Broadphase::refile(std::uint32_t body, double x, double y) {
   if (head != kNoSlot) prev_[head] = body;
   head = body;
   ref_[body] = {x, y};
+  if (built()) unmarked_.push_back({body, x, y});
 }
 
 void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry_of) {

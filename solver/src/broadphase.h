@@ -84,6 +84,14 @@ class Broadphase {
   // pairs. The test is against a box around every place such a body was filed, grown by the
   // largest half extent of its level and the refile distance (it moved at most that far since),
   // so it takes four comparisons however many bodies are stale.
+  // False when no body filed again since the near pairs were last scanned was filed close
+  // enough to `body` (a body neither filed again nor in the overlay) to overlap it before being
+  // filed again: refile() marks every grid body around the new place.
+  bool near_stale(std::uint32_t body) const {
+    if (!unmarked_.empty()) [[unlikely]]
+      mark_refiled();
+    return near_stale_[body] == mark_epoch_;
+  }
   bool stale_may_overlap(double x, double y, double hx, double hy, double tolerance) const {
     const double g = refile_ - tolerance;
     return stale_ != 0 && x + hx + g > stale_lo_.x && x - hx - g < stale_hi_.x &&
@@ -196,6 +204,12 @@ class Broadphase {
 
   // Files body in the overlay at (x, y) (moving it there if it is in already).
   void refile(std::uint32_t body, double x, double y);
+  // Marks near_stale() every grid body that a body of level l filed at (x, y) may overlap before
+  // it is filed again.
+  void mark_near(std::size_t l, double x, double y) const;
+  // mark_near() for every place a body was filed at since the marks were last made: when first
+  // asked, so that a step whose refiled bodies send it to a new scan makes none.
+  void mark_refiled() const;
   void clear_overlay();
   void unlink(std::uint32_t body);
   // fn(j) for every overlay body of level l filed in a cell the box (x +- rx, y +- ry) reaches.
@@ -218,11 +232,20 @@ class Broadphase {
   std::vector<std::int32_t> overlay_cx_, overlay_cy_;
   std::vector<std::uint32_t> next_, prev_;
   std::vector<std::uint64_t> epoch_of_;
-  std::vector<std::uint32_t> members_;  // overlay bodies, in the order they entered it
-  std::uint64_t scan_ = 0;              // near-pair scans so far
-  std::uint32_t stale_ = 0;             // bodies filed again since the last scan
-  Point stale_lo_{}, stale_hi_{};       // around their boxes where they were filed since
-  double margin_ = 0.0;                 // largest displacement from where a body is filed
+  // Per slot: mark_epoch_ when some body filed again since the last scan or clear_overlay() was
+  // filed near it (near_stale()).
+  mutable std::vector<std::uint64_t> near_stale_;
+  std::uint64_t mark_epoch_ = 1;
+  struct Filed {
+    std::uint32_t body;
+    double x, y;
+  };
+  mutable std::vector<Filed> unmarked_;  // places filed at since the marks were made
+  std::vector<std::uint32_t> members_;   // overlay bodies, in the order they entered it
+  std::uint64_t scan_ = 0;               // near-pair scans so far
+  std::uint32_t stale_ = 0;              // bodies filed again since the last scan
+  Point stale_lo_{}, stale_hi_{};        // around their boxes where they were filed since
+  double margin_ = 0.0;                  // largest displacement from where a body is filed
   double slack_ = 0.0;
   double refile_ = 0.0;
   std::uint64_t generation_ = 0;
@@ -326,6 +349,8 @@ void Broadphase::for_each_near_pair(const Bodies& bodies, Fn&& fn) {
     epoch_of_[i] = scan_ + 1;
   }
   ++scan_;
+  ++mark_epoch_;
+  unmarked_.clear();
   stale_ = 0;
   const double gap = -slack_;
   auto test = [&](const Entry& e, const Entry& f) {
@@ -403,7 +428,7 @@ template <class Fn>
 void Broadphase::for_each_stale_overlap(const Bodies& bodies, std::uint32_t body, double tolerance,
                                         Fn&& fn) const {
   const double x = bodies.x(body), y = bodies.y(body), hx = bodies.hx(body), hy = bodies.hy(body);
-  if (!stale_may_overlap(x, y, hx, hy, tolerance)) return;
+  if (!near_stale(body) || !stale_may_overlap(x, y, hx, hy, tolerance)) return;
   for (std::size_t l = 0; l < levels_.size(); ++l) {
     const Level& level = levels_[l];
     const double rx = hx + level.small_half + margin_, ry = hy + level.small_half + margin_;

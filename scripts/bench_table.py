@@ -457,6 +457,30 @@ def plain_table(context, runs):
             "|---|---|---:|---:|---:|"] + out
 
 
+def churn_table(context, runs):
+    """Per engine and size: a step of the churn family (bodies created and destroyed each step)
+    against the same world with nothing coming or going (churn_base), and their ratio."""
+    recipes = family_recipes(context)
+    engines, _ = ordered(runs)
+    out = []
+    churn_rows = sorted(((e, int(size or 0), size, b) for (f, e, size), b in runs.items() if f == "churn"),
+                        key=lambda row: row[1])
+    for engine in engines:
+        for e, _, size, churning in churn_rows:
+            still = runs.get(("churn_base", engine, size))
+            if e != engine or not still:
+                continue
+            out.append(f"| {row_label(recipes, 'churn', size)} | `{engine}` | {fmt_ms(ms(churning))} | "
+                       f"{fmt_ms(ms(still))} | {ms(churning) / ms(still):.2f}x |")
+    if not out:
+        return []
+    return ["", "Bodies coming and going: a wall at rest while one box a step is created above it and "
+            "destroyed the next (`churn`), against the same wall with nothing coming or going "
+            "(`churn_base`), timed over the same 60 steps:",
+            "", "| scene | engine | churning ms/step | still ms/step | ratio |",
+            "|---|---|---:|---:|---:|"] + out
+
+
 def tables(context, runs, accuracy=None):
     """Every table, in the order the module docstring gives."""
     accuracy = accuracy or {}
@@ -471,6 +495,7 @@ def tables(context, runs, accuracy=None):
     out += scaling_tables(context, runs, subject)
     out += harness_table(context, runs, subject)
     out += plain_table(context, runs)
+    out += churn_table(context, runs)
     out += ["", f"Measured {context.get('date', '?')} on {context.get('num_cpus', '?')} CPUs at "
             f"{context.get('mhz_per_cpu', '?')} MHz, one benchmark at a time; ratios are from the same run."]
     return "\n".join(out)

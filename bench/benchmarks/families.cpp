@@ -5,6 +5,7 @@
 
 #include <string>
 #include <tuple>
+#include <utility>
 
 namespace chainbench {
 
@@ -57,6 +58,15 @@ const std::vector<Family>& benchmark_families() {
     spawn.moving = true;
     spawn.others_max = 20'000;
     f.push_back(spawn);
+    // One body created and one destroyed a step in a wall at rest, against the same wall with
+    // nothing coming or going (churn_base): what a game's projectiles cost beyond their physics.
+    for (auto [name, per_step] : {std::pair{"churn", 1}, std::pair{"churn_base", 0}}) {
+      Family churn{
+          name, "churn", {"cols"}, {1'000, 10'000}, {"per_step=" + std::to_string(per_step)}, 45};
+      churn.window = 60;
+      churn.others_max = 20'000;
+      f.push_back(churn);
+    }
     return f;
   }();
   return families;

@@ -336,6 +336,7 @@ std::size_t bulldozer_count(const SceneParams& p) {
 }  // namespace
 
 SceneRecipe spawn_rain_recipe();  // spawn_rain.cpp
+SceneRecipe churn_recipe();       // churn.cpp
 
 std::vector<SceneRecipe> moving_scenes() {
   return {
@@ -375,6 +376,7 @@ std::vector<SceneRecipe> moving_scenes() {
        bulldozer_count,
        120},
       spawn_rain_recipe(),
+      churn_recipe(),
   };
 }
 

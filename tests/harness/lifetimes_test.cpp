@@ -246,6 +246,29 @@ TEST(Lifetimes, SpawnRainStatesEveryBoxsRestAndScales) {
   EXPECT_EQ(large.bodies.size(), 600u + 12u * 300u);
 }
 
+// churn: per_step boxes take part in each step and no other, so every step but the first
+// creates and destroys that many; the wall never moves, in chain and in Box2D.
+TEST(Lifetimes, ChurnCreatesAndDestroysPerStepBoxesAndLeavesTheWallAlone) {
+  const Scene scene = make_scene("churn", {"cols=20", "height=3", "per_step=2", "steps=30"});
+  ASSERT_TRUE(validate(scene).empty());
+  const std::size_t wall = 20u * 3u + 1u;
+  ASSERT_EQ(scene.bodies.size(), wall + 2u * 30u);
+  for (int k = 0; k < 30; ++k) {
+    std::size_t taking_part = 0;
+    for (const SceneBody& b : scene.bodies)
+      taking_part += b.from_step <= k && k < b.to_step;
+    EXPECT_EQ(taking_part, wall + 2u) << "step " << k;
+  }
+  for (const char* engine : {"chain", "box2d"}) {
+    SCOPED_TRACE(engine);
+    const EngineRun run = run_engine(scene, parse_engine_spec(engine), RunOptions{});
+    ASSERT_TRUE(run.expect.has_value());
+    EXPECT_TRUE(run.expect->pass);
+  }
+  // Nothing comes or goes with per_step=0: the same wall, still.
+  EXPECT_FALSE(make_scene("churn", {"per_step=0"}).has_lifetimes());
+}
+
 TEST(Lifetimes, ChainWithSpawnsIsTheSameBitsTwiceAndOnTwoThreads) {
   const Scene scene = make_scene("spawn_rain", {"cols=40", "steps=90"});
   const EngineRun a = run_engine(scene, parse_engine_spec("chain"), RunOptions{});

@@ -225,6 +225,23 @@ class HarnessTableTest(unittest.TestCase):
         self.assertTrue(any(line.startswith("Harness cost") for line in lines))
 
 
+class ChurnTableTest(unittest.TestCase):
+    def test_each_engine_has_its_churning_step_over_its_still_one(self):
+        context = {"chainbench_family_churn": "churn cols per_step=1",
+                   "chainbench_family_churn_base": "churn cols per_step=0"}
+        runs = {("churn", "fast", "1000"): bench("churn/fast/1000", 3.0, 10001, 300),
+                ("churn_base", "fast", "1000"): bench("churn_base/fast/1000", 0.5, 10001, 50),
+                ("churn", "ref", "1000"): bench("churn/ref/1000", 10.0, 10001, 1000),
+                ("churn_base", "ref", "1000"): bench("churn_base/ref/1000", 8.0, 10001, 800),
+                ("churn", "ref", "10000"): bench("churn/ref/10000", 90.0, 100001, 900)}
+        lines = bench_table.churn_table(context, runs)
+        self.assertIn("| `churn` per_step=1 cols=1,000 | `fast` | 3.000 | 0.500 | 6.00x |", lines)
+        self.assertIn("| `churn` per_step=1 cols=1,000 | `ref` | 10.0 | 8.000 | 1.25x |", lines)
+        # A size with no still row has no ratio to give.
+        self.assertFalse(any("cols=10,000" in line for line in lines))
+        self.assertEqual(bench_table.churn_table(CONTEXT, RUNS), [])
+
+
 class AccuracyRunsTest(unittest.TestCase):
     """accuracy_runs against a stand-in for chainbench that records its arguments."""
 

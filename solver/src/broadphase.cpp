@@ -3,7 +3,6 @@
 
 #include <bit>
 #include <limits>
-#include <numeric>
 #include <utility>
 
 namespace chain::detail {
@@ -48,11 +47,14 @@ void Broadphase::configure(const Bodies& bodies) {
   stale_ = 0;
   levels_.clear();
 
+  // By size, then slot: sorted as (size, slot) pairs, so that no comparison reads the bodies.
+  std::vector<std::pair<double, std::uint32_t>> sized(n);
+  for (std::uint32_t i = 0; i < n; ++i)
+    sized[i] = {largest_half(bodies, i), i};
+  std::sort(sized.begin(), sized.end());
   std::vector<std::uint32_t> by_size(n);
-  std::iota(by_size.begin(), by_size.end(), 0u);
-  std::sort(by_size.begin(), by_size.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return std::pair(largest_half(bodies, a), a) < std::pair(largest_half(bodies, b), b);
-  });
+  for (std::uint32_t k = 0; k < n; ++k)
+    by_size[k] = sized[k].second;
   std::vector<double> movable;
   std::size_t start = 0;
   while (start < n) {

@@ -152,17 +152,10 @@ void Broadphase::mark_near(std::size_t l, double x, double y) const {
   // (x, y) (half extents at most its level's largest, and moving at most refile_ before it is filed
   // again) can overlap only if their filed places are closer than both half extents and both
   // refile distances: the test below with a gap of -2 refile_.
-  // Bodies in the overlay that are not stale (filed there before the last scan) are marked the
-  // same way from where they are filed, with their level's largest half extent for their own.
   const double h = levels_[l].small_half, reach = 2.0 * refile_;
-  for (std::size_t m = 0; m < levels_.size(); ++m) {
-    const Level& level = levels_[m];
+  for (const Level& level : levels_) {
     level.scan(level.cells_near(x, y, h, h, reach), examined_, [&](const Entry& e) {
       if (!e.out && within(x, y, h, h, e, -reach)) near_stale_[e.body] = mark_epoch_;
-    });
-    const double r = h + level.small_half + reach;
-    scan_overlay(m, x, y, r, r, [&](std::uint32_t k) {
-      if (std::abs(ref_[k].x - x) < r && std::abs(ref_[k].y - y) < r) near_stale_[k] = mark_epoch_;
     });
   }
 }

@@ -85,12 +85,13 @@ class Broadphase {
   // largest half extent of its level and the refile distance (it moved at most that far since),
   // so it takes four comparisons however many bodies are stale.
   // False when no body filed again since the near pairs were last scanned was filed close
-  // enough to `body` (a body neither filed again nor in the overlay) to overlap it before being
-  // filed again: refile() marks every grid body around the new place.
+  // enough to `body` (a body not filed again since) to overlap it before being filed again:
+  // refile() marks every grid body around the new place. Always true for a body in the overlay
+  // (filed there before the last scan): marking those too cost more than their probes.
   bool near_stale(std::uint32_t body) const {
     if (!unmarked_.empty()) [[unlikely]]
       mark_refiled();
-    return near_stale_[body] == mark_epoch_;
+    return near_stale_[body] == mark_epoch_ || in_overlay_[body];
   }
   bool stale_may_overlap(double x, double y, double hx, double hy, double tolerance) const {
     const double g = refile_ - tolerance;

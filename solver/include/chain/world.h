@@ -37,8 +37,8 @@
 //     bodies are fast and one is stopped earlier in the step by a third body, the other may miss
 //     it.
 //   - Pushes (modern): a push moves a body at once by up to an overlap depth. A push longer than
-//     a tenth of the smallest half extent in the world stops where the body would be 90% of the
-//     way to the centre of a body it meets (across at least half the smaller box), so push-out
+//     a tenth of the pushed body's own half extent along it stops where the body would be 90% of
+//     the way to the centre of a body it meets (across at least half the smaller box), so push-out
 //     never lands a body on or past another's centre, where it would send it on through; what is
 //     left of the overlap is resolved by the chain or the next sweep. Boxes created overlapping
 //     are so pushed apart without one crossing another in a push.

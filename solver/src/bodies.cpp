@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <limits>
 #include <numeric>
 #include <tuple>
 #include <utility>
@@ -67,6 +68,19 @@ int kind_rank(BodyType type) {
   return 3;
 }
 
+// Every field that tells bodies apart, after their kind and place along the Z-order curve: what
+// each is now, then what it was created as, then its id (creation order), which only breaks ties
+// between bodies created identical and still so.
+auto state_fields(const Bodies& b, std::uint32_t i, std::span<const Origin> origin_of_id) {
+  const Origin& o = origin_of_id[b.id[i]];
+  return std::tuple(order_key(b.y(i)), order_key(b.x(i)), order_key(b.hy(i)), order_key(b.hx(i)),
+                    order_key(b.mass[i]), order_key(b.vx[i]), order_key(b.vy[i]),
+                    order_key(b.gravity_scale[i]), order_key(b.restitution[i]),
+                    order_key(b.friction[i]), b.driven[i], order_key(b.drive_x[i]),
+                    order_key(b.drive_y[i]), order_key(o.cy), order_key(o.cx), order_key(o.vx),
+                    order_key(o.vy), b.id[i]);
+}
+
 // v[i] = old v[order[i]], through `spare`, which is left holding v's old buffer for the next.
 template <class T>
 void gather(std::vector<T>& v, std::span<const std::uint32_t> order, std::vector<T>& spare) {
@@ -102,6 +116,44 @@ void Bodies::append(const BodyDef& def, std::uint32_t body_id) {
   id.push_back(body_id);
 }
 
+void Bodies::kill(std::uint32_t slot) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  box[slot].center[0] = box[slot].center[1] = kNaN;
+  start[slot] = {kNaN, kNaN};
+  vx[slot] = vy[slot] = 0.0;
+  gravity_scale[slot] = restitution[slot] = friction[slot] = 0.0;
+  drive_x[slot] = drive_y[slot] = 0.0;
+  driven[slot] = 0;
+  touching[slot] = TouchBits{};
+  id[slot] = kDeadId;
+}
+
+void Bodies::move_slot(std::uint32_t from, std::uint32_t to) {
+  box[to] = box[from], vx[to] = vx[from], vy[to] = vy[from];
+  mass[to] = mass[from], gravity_scale[to] = gravity_scale[from];
+  restitution[to] = restitution[from], friction[to] = friction[from];
+  start[to] = start[from];
+  drive_x[to] = drive_x[from], drive_y[to] = drive_y[from], driven[to] = driven[from];
+  touching[to] = touching[from], type[to] = type[from], id[to] = id[from];
+}
+
+void Bodies::truncate(std::uint32_t n) {
+  auto keep = [n](auto& v) { v.resize(n); };
+  keep(box), keep(vx), keep(vy), keep(mass), keep(gravity_scale), keep(restitution);
+  keep(friction), keep(start), keep(drive_x), keep(drive_y), keep(driven), keep(touching);
+  keep(type), keep(id);
+}
+
+void Bodies::drop_dead() {
+  std::uint32_t kept = 0;
+  for (std::uint32_t i = 0; i < size(); ++i) {
+    if (dead(i)) continue;
+    if (kept != i) move_slot(i, kept);
+    ++kept;
+  }
+  truncate(kept);
+}
+
 std::uint32_t Bodies::swap_remove(std::uint32_t slot) {
   const std::uint32_t last = size() - 1;
   auto move_last = [&](auto& v) {
@@ -128,13 +180,8 @@ void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id,
   // matter.
   const std::vector<std::uint64_t> z = z_order(*this);
   auto full_key = [&](std::uint32_t i) {
-    const Origin& o = origin_of_id[id[i]];
-    return std::tuple(kind_rank(type[i]), z[i], order_key(y(i)), order_key(x(i)), order_key(hy(i)),
-                      order_key(hx(i)), order_key(mass[i]), order_key(vx[i]), order_key(vy[i]),
-                      order_key(gravity_scale[i]), order_key(restitution[i]),
-                      order_key(friction[i]), driven[i], order_key(drive_x[i]),
-                      order_key(drive_y[i]), order_key(o.cy), order_key(o.cx), order_key(o.vx),
-                      order_key(o.vy), id[i]);
+    return std::tuple_cat(std::tuple(kind_rank(type[i]), z[i]),
+                          state_fields(*this, i, origin_of_id));
   };
   // The key's first three fields, which nearly always decide, are sorted together with the slot;
   // the whole key is built only for the pairs they leave tied: the same order as sorting by the
@@ -167,6 +214,15 @@ void Bodies::canonicalize(std::vector<std::uint32_t>& slot_of_id,
   }
   for (std::uint32_t i = 0; i < n; ++i)
     slot_of_id[id[i]] = i;
+}
+
+void Bodies::sort_by_state(std::span<std::uint32_t> slots,
+                           std::span<const Origin> origin_of_id) const {
+  auto key = [&](std::uint32_t i) {
+    return std::tuple_cat(std::tuple(kind_rank(type[i])), state_fields(*this, i, origin_of_id));
+  };
+  std::sort(slots.begin(), slots.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
 }
 
 void Bodies::Spare::reserve(std::size_t n) {

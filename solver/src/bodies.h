@@ -87,7 +87,23 @@ struct Bodies {
   }
   bool immovable(std::uint32_t i) const { return i >= dynamic_end; }
 
+  // The id of a slot whose body was destroyed in place (kill()): a dynamic slot with no body,
+  // whose centre is NaN, so that it overlaps nothing, and that gravity and drives leave alone.
+  static constexpr std::uint32_t kDeadId = 0xffffffffu;
+  bool dead(std::uint32_t i) const { return id[i] == kDeadId; }
+
   void append(const BodyDef& def, std::uint32_t body_id);
+  // Empties dynamic slot `slot` in place (see kDeadId); no other slot moves.
+  void kill(std::uint32_t slot);
+  // Slot `to` takes everything slot `from` holds (from is left as it was).
+  void move_slot(std::uint32_t from, std::uint32_t to);
+  // Keeps slots [0, n) and drops the rest.
+  void truncate(std::uint32_t n);
+  // Drops every dead slot, keeping the others in order.
+  void drop_dead();
+  // Sorts `slots` by the canonical key without its place along the Z-order curve: by what the
+  // bodies are now and were created as, never by creation order (origin_of_id as canonicalize's).
+  void sort_by_state(std::span<std::uint32_t> slots, std::span<const Origin> origin_of_id) const;
   // Moves the last slot into `slot` and drops the last; returns the id now stored at `slot`.
   std::uint32_t swap_remove(std::uint32_t slot);
   // Sorts slots into solve order; fills slot_of_id (indexed by BodyId value). origin_of_id, by

@@ -126,6 +126,35 @@ void Broadphase::build(const Bodies& bodies) {
     level.build(bodies, entry_of_);
 }
 
+void Broadphase::insert(const Bodies& bodies, std::uint32_t body) {
+  const double half = std::max(bodies.hx(body), bodies.hy(body));
+  std::uint8_t l = 0;
+  while (levels_[l].small_half < half)
+    ++l;
+  if (const std::uint8_t old = level_of_[body]; old != l) {
+    std::vector<std::uint32_t>& from = levels_[old].bodies;
+    from.erase(std::lower_bound(from.begin(), from.end(), body));
+    std::vector<std::uint32_t>& to = levels_[l].bodies;
+    to.insert(std::upper_bound(to.begin(), to.end(), body), body);
+    level_of_[body] = l;
+  }
+  refile(body, bodies.x(body), bodies.y(body));
+}
+
+void Broadphase::remove(std::uint32_t body) {
+  Level& level = levels_[level_of_[body]];
+  if (built() && entry_of_[body] != kNoSlot) level.entries[entry_of_[body]].out = 1;
+  entry_of_[body] = kNoSlot;  // until build() files the slot again
+  if (in_overlay_[body]) {
+    unlink(body);
+    in_overlay_[body] = 0;
+    --level.overlay_members;
+    members_.erase(std::find(members_.begin(), members_.end(), body));
+    if (epoch_of_[body] > scan_) --stale_;
+  }
+  epoch_of_[body] = 0;
+}
+
 void Broadphase::clear_overlay() {
   for (const std::uint32_t i : members_) {
     if (!in_overlay_[i]) continue;
@@ -181,7 +210,8 @@ void Broadphase::refile(std::uint32_t body, double x, double y) {
     members_.push_back(body);
     // Until build() runs after a configure() or renumber(), entry_of_ names the entries of the old
     // slots (of another level, maybe): nothing reads them before build() files every body anew.
-    if (built()) level.entries[entry_of_[body]].out = 1;
+    // A slot remove() emptied has no entry until then.
+    if (built() && entry_of_[body] != kNoSlot) level.entries[entry_of_[body]].out = 1;
   }
   if (epoch_of_[body] <= scan_) {
     if (stale_++ == 0) {
@@ -224,7 +254,10 @@ void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry
   height = cells_spanned(origin_y, max_y, inv_cell);
   dense = static_cast<std::uint64_t>(width) * height <= static_cast<std::uint64_t>(mask) + 1;
 
-  // Counting sort by bucket; stable, so solve order holds within a bucket.
+  // Counting sort by bucket; stable, so solve order holds within a bucket. The level may have
+  // gained or lost slots since configure() (Broadphase::insert).
+  keys.resize(bodies.size()), key_x.resize(bodies.size()), key_y.resize(bodies.size());
+  entries.resize(bodies.size());
   std::fill(cell_start.begin(), cell_start.end(), 0u);
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     const std::uint32_t i = bodies[k];

@@ -41,6 +41,18 @@ class Broadphase {
   void renumber(std::span<const std::uint32_t> order);
   // Buckets every body at its current position.
   void build(const Bodies& bodies);
+  // Whether a body of this largest half extent fits a level (no larger than the largest body of
+  // some level), so that insert() can take it without configure().
+  bool fits(double largest_half) const {
+    return !levels_.empty() && largest_half <= levels_.back().small_half;
+  }
+  // Slot `body` of a dead body (remove()) now holds a new one, which fits(): files it in the
+  // finest level that holds its size, in the overlay where it is (filed again, as a far push is),
+  // so that the near pairs serve on and generation() does not change.
+  void insert(const Bodies& bodies, std::uint32_t body);
+  // The body of slot `body` is gone (Bodies::kill): it leaves the grid and the overlay, and the
+  // slot keeps its level until insert() fills it.
+  void remove(std::uint32_t body);
   // Changes whenever the body set changes (configure()) or the slots are renumbered.
   std::uint64_t generation() const { return generation_; }
   // build() ran since the last configure() or renumber(): queries may be made (every move since

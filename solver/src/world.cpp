@@ -35,7 +35,15 @@ struct World::Impl {
   std::vector<std::uint32_t> creation_order;  // dynamic slots, oldest first
   // By BodyId value, destroyed ones included (as slot_of_id): the canonical sort's tie-break.
   std::vector<detail::Origin> origin_of_id;
+  // Bodies created or destroyed since the last step: prepare() files them. `full` when that
+  // takes the canonical re-sort (anything but dynamic bodies created into and destroyed from an
+  // already sorted modern world).
   bool dirty = false;
+  bool full = false;
+  bool sorted_once = false;           // canonicalize() has run: the world has a canonical order
+  std::uint32_t committed = 0;        // slots before those created since the last step
+  std::vector<std::uint32_t> empty;   // dead dynamic slots (Bodies::kill), for created bodies
+  std::vector<std::uint32_t> placed;  // place_created()'s buffer
   detail::Broadphase broadphase;
   detail::VelocityResponse response;
   detail::Motion motion;
@@ -59,7 +67,11 @@ struct World::Impl {
   }
 
   void canonicalize() {
+    bodies.drop_dead();
+    empty.clear();
     bodies.canonicalize(slot_of_id, origin_of_id);
+    committed = bodies.size();
+    sorted_once = true;
     broadphase.configure(bodies);
     layout.reset(bodies.size());
     response.reserve(bodies.size());
@@ -74,9 +86,46 @@ struct World::Impl {
     }
   }
 
+  std::uint32_t live() const { return bodies.size() - static_cast<std::uint32_t>(empty.size()); }
+
+  // Whether a destroyed body can leave its slot empty (no other slot moves, nothing re-sorted).
+  bool kill_in_place(std::uint32_t s) const {
+    return sorted_once && !full && def.variant == Variant::kModern && s < committed &&
+           bodies.type[s] == BodyType::kDynamic;
+  }
+
+  // The dynamic bodies created since the last step take empty slots: sorted among themselves by
+  // what they are (never by creation order), into the empty slots in ascending order, each filed
+  // in the broadphase as a body filed again is. False (nothing changed) when there are not enough
+  // empty slots or a body is larger than every broadphase level's: canonicalize() then.
+  bool place_created() {
+    const std::uint32_t n = bodies.size();
+    if (n - committed > empty.size()) return false;
+    placed.clear();
+    for (std::uint32_t p = committed; p < n; ++p) {
+      if (!broadphase.fits(std::max(bodies.hx(p), bodies.hy(p)))) return false;
+      placed.push_back(p);
+    }
+    bodies.sort_by_state(placed, origin_of_id);
+    std::sort(empty.begin(), empty.end());
+    for (std::size_t k = 0; k < placed.size(); ++k) {
+      bodies.move_slot(placed[k], empty[k]);
+      slot_of_id[bodies.id[empty[k]]] = empty[k];
+      if (bodies.restitution[empty[k]] > 0.0) bodies.bounces = true;
+    }
+    bodies.truncate(committed);
+    for (std::size_t k = 0; k < placed.size(); ++k)
+      broadphase.insert(bodies, empty[k]);
+    empty.erase(empty.begin(), empty.begin() + static_cast<std::ptrdiff_t>(placed.size()));
+    return true;
+  }
+
   // Files bodies created or destroyed since the last step and clears the last step's records.
   void prepare() {
-    if (dirty) canonicalize();
+    if (dirty) {
+      if (full || !place_created()) canonicalize();
+      dirty = full = false;
+    }
     stats = StepStats{};
     crush_records.clear();
     response.clear();
@@ -108,8 +157,14 @@ struct World::Impl {
   // Slot i takes the body of slot order[i]; everything that names slots follows.
   void renumber(std::span<const std::uint32_t> order) {
     bodies.permute(order, layout.spare());
-    for (std::uint32_t i = 0; i < bodies.size(); ++i)
-      slot_of_id[bodies.id[i]] = i;
+    empty.clear();
+    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+      if (bodies.dead(i)) {
+        empty.push_back(i);
+      } else {
+        slot_of_id[bodies.id[i]] = i;
+      }
+    }
     list_creation_order();
     broadphase.renumber(order);
     modern.forget_slots();
@@ -140,16 +195,26 @@ BodyId World::create_body(const BodyDef& def) {
   impl_->bodies.append(def, id);
   if (def.friction > 0.0) ++impl_->rough_bodies;
   impl_->dirty = true;
+  if (!impl_->sorted_once || def.type != BodyType::kDynamic ||
+      impl_->def.variant != Variant::kModern)
+    impl_->full = true;
   return BodyId{id};
 }
 
 void World::destroy_body(BodyId id) {
-  const std::uint32_t s = impl_->slot(id);
-  if (impl_->bodies.friction[s] > 0.0) --impl_->rough_bodies;
-  const std::uint32_t moved = impl_->bodies.swap_remove(s);
-  if (moved != detail::kNoSlot) impl_->slot_of_id[moved] = s;
-  impl_->slot_of_id[id.value] = detail::kNoSlot;
-  impl_->dirty = true;
+  Impl& w = *impl_;
+  const std::uint32_t s = w.slot(id);
+  if (w.bodies.friction[s] > 0.0) --w.rough_bodies;
+  w.slot_of_id[id.value] = detail::kNoSlot;
+  if (w.kill_in_place(s)) {
+    w.bodies.kill(s);
+    w.broadphase.remove(s);
+    w.empty.push_back(s);
+    return;
+  }
+  const std::uint32_t moved = w.bodies.swap_remove(s);
+  if (moved != detail::kNoSlot) w.slot_of_id[moved] = s;
+  w.dirty = w.full = true;
 }
 
 bool World::contains(BodyId id) const noexcept {
@@ -157,7 +222,7 @@ bool World::contains(BodyId id) const noexcept {
 }
 
 std::size_t World::body_count() const noexcept {
-  return impl_->bodies.size();
+  return impl_->live();
 }
 
 void World::set_drive(BodyId id, Vec2 velocity, DriveAxes axes) {
@@ -226,31 +291,29 @@ void World::read_state(Span<const BodyId> ids, Span<Vec2> positions, Span<Vec2> 
   }
 }
 
+// Entry k of read_all's outputs is the k-th slot that holds a body: dead slots (Bodies::kill)
+// are passed over, so that a world with none costs one test a slot.
 void World::read_all(Span<BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities) const {
   const detail::Bodies& b = impl_->bodies;
-  const std::size_t n = b.size();
+  const std::size_t n = impl_->live();
   if ((!ids.empty() && ids.size() < n) || (!positions.empty() && positions.size() < n) ||
       (!velocities.empty() && velocities.size() < n)) {
     throw std::invalid_argument("read_all: an output span is shorter than body_count()");
   }
-  if (!ids.empty()) {
-    for (std::size_t s = 0; s < n; ++s)
-      ids[s] = BodyId{b.id[s]};
-  }
-  if (!positions.empty()) {
-    for (std::size_t s = 0; s < n; ++s)
-      positions[s] = {b.box[s].center[0], b.box[s].center[1]};
-  }
-  if (!velocities.empty()) {
-    for (std::size_t s = 0; s < n; ++s)
-      velocities[s] = {b.vx[s], b.vy[s]};
+  std::size_t k = 0;
+  for (std::uint32_t s = 0; s < b.size(); ++s) {
+    if (b.dead(s)) continue;
+    if (!ids.empty()) ids[k] = BodyId{b.id[s]};
+    if (!positions.empty()) positions[k] = {b.box[s].center[0], b.box[s].center[1]};
+    if (!velocities.empty()) velocities[k] = {b.vx[s], b.vy[s]};
+    ++k;
   }
 }
 
 void World::update_all(Span<BodyId> ids, Span<Vec2> positions, Span<Vec2> velocities,
                        std::vector<std::uint32_t>& changed) const {
   const detail::Bodies& b = impl_->bodies;
-  const std::size_t n = b.size();
+  const std::size_t n = impl_->live();
   if (ids.size() < n || positions.size() < n || velocities.size() < n) {
     throw std::invalid_argument("update_all: an output span is shorter than body_count()");
   }
@@ -258,15 +321,18 @@ void World::update_all(Span<BodyId> ids, Span<Vec2> positions, Span<Vec2> veloci
   auto same = [](double a, double c) {
     return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(c) && a == a;
   };
-  for (std::size_t s = 0; s < n; ++s) {
+  std::uint32_t k = 0;
+  for (std::uint32_t s = 0; s < b.size(); ++s) {
+    if (b.dead(s)) continue;
     const Vec2 p{b.box[s].center[0], b.box[s].center[1]}, v{b.vx[s], b.vy[s]};
-    if (ids[s].value == b.id[s] && same(p.x, positions[s].x) && same(p.y, positions[s].y) &&
-        same(v.x, velocities[s].x) && same(v.y, velocities[s].y))
-      continue;
-    ids[s] = BodyId{b.id[s]};
-    positions[s] = p;
-    velocities[s] = v;
-    changed.push_back(static_cast<std::uint32_t>(s));
+    if (!(ids[k].value == b.id[s] && same(p.x, positions[k].x) && same(p.y, positions[k].y) &&
+          same(v.x, velocities[k].x) && same(v.y, velocities[k].y))) {
+      ids[k] = BodyId{b.id[s]};
+      positions[k] = p;
+      velocities[k] = v;
+      changed.push_back(k);
+    }
+    ++k;
   }
 }
 
@@ -288,8 +354,7 @@ void World::step(double dt) {
   w.motion.integrate(w.bodies, w.broadphase, w.def.gravity, dt, modern, rough, w.pool);
   clock.lap(w.profile.integrate);
 
-  const std::uint64_t budget =
-      static_cast<std::uint64_t>(w.def.budget_per_body) * w.bodies.size() + 1024u;
+  const std::uint64_t budget = static_cast<std::uint64_t>(w.def.budget_per_body) * w.live() + 1024u;
   detail::StepContext ctx{
       w.bodies, w.broadphase, w.response,
       w.def,    w.stats,      w.crush_records,

@@ -142,6 +142,10 @@ class World {
   // bad definition, std::length_error once 2^32 - 1 bodies were created.
   BodyId create_body(const BodyDef& def);
   // Removes a body; its id is never handed out again. Throws std::invalid_argument (unknown id).
+  // Cost (modern, once the world has stepped): destroying a dynamic body empties its slot, and
+  // dynamic bodies created before the next step take empty slots, about what the body itself
+  // costs; anything else (a static or kinematic body, more bodies created than slots emptied, a
+  // body larger than any in the world) re-sorts the whole world at the next step.
   void destroy_body(BodyId id);
   bool contains(BodyId id) const noexcept;
   std::size_t body_count() const noexcept;
@@ -189,7 +193,8 @@ class World {
   // Advances by dt seconds. Throws std::invalid_argument unless dt is finite and > 0; any dt is
   // valid, and fast bodies are swept whatever it is (modern). Throws std::length_error for a
   // modern world of 2^30 bodies or more (its near lists keep 32-bit box offsets).
-  // Deterministic: the same bodies, in any creation order, give the same bits (modern variant).
+  // Deterministic: the same bodies, in any creation order, give the same bits (modern variant);
+  // so do the bodies created and destroyed between two steps, in any order of the calls.
   // Bodies that reach one state are told apart by what each was created as (its BodyDef), so
   // only two bodies created identical (same BodyDef, same drive) and still so may trade places.
   // Allocates nothing once the world's buffers have grown to their working size.

@@ -129,19 +129,11 @@ void Bodies::kill(std::uint32_t slot) {
 }
 
 void Bodies::move_slot(std::uint32_t from, std::uint32_t to) {
-  box[to] = box[from], vx[to] = vx[from], vy[to] = vy[from];
-  mass[to] = mass[from], gravity_scale[to] = gravity_scale[from];
-  restitution[to] = restitution[from], friction[to] = friction[from];
-  start[to] = start[from];
-  drive_x[to] = drive_x[from], drive_y[to] = drive_y[from], driven[to] = driven[from];
-  touching[to] = touching[from], type[to] = type[from], id[to] = id[from];
+  each_array([from, to](auto& v) { v[to] = v[from]; });
 }
 
 void Bodies::truncate(std::uint32_t n) {
-  auto keep = [n](auto& v) { v.resize(n); };
-  keep(box), keep(vx), keep(vy), keep(mass), keep(gravity_scale), keep(restitution);
-  keep(friction), keep(start), keep(drive_x), keep(drive_y), keep(driven), keep(touching);
-  keep(type), keep(id);
+  each_array([n](auto& v) { v.resize(n); });
 }
 
 void Bodies::drop_dead() {
@@ -156,15 +148,10 @@ void Bodies::drop_dead() {
 
 std::uint32_t Bodies::swap_remove(std::uint32_t slot) {
   const std::uint32_t last = size() - 1;
-  auto move_last = [&](auto& v) {
+  each_array([slot, last](auto& v) {
     v[slot] = v[last];
     v.pop_back();
-  };
-  move_last(box), move_last(vx), move_last(vy);
-  move_last(mass), move_last(gravity_scale), move_last(restitution), move_last(friction);
-  move_last(start);
-  move_last(drive_x), move_last(drive_y), move_last(driven), move_last(touching);
-  move_last(type), move_last(id);
+  });
   return slot < size() ? id[slot] : kNoSlot;
 }
 

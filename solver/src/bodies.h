@@ -92,6 +92,14 @@ struct Bodies {
   static constexpr std::uint32_t kDeadId = 0xffffffffu;
   bool dead(std::uint32_t i) const { return id[i] == kDeadId; }
 
+  // fn(v) for every per-slot array above, in one fixed order: the one list of them that moving,
+  // dropping and truncating slots go through, so that a new array cannot be left out of one.
+  template <class Fn>
+  void each_array(Fn&& fn) {
+    fn(box), fn(vx), fn(vy), fn(mass), fn(gravity_scale), fn(restitution), fn(friction);
+    fn(drive_x), fn(drive_y), fn(driven), fn(start), fn(touching), fn(type), fn(id);
+  }
+
   void append(const BodyDef& def, std::uint32_t body_id);
   // Empties dynamic slot `slot` in place (see kDeadId); no other slot moves.
   void kill(std::uint32_t slot);

@@ -246,6 +246,9 @@ void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry
     min_y = std::min(min_y, b.y(i));
     max_y = std::max(max_y, b.y(i));
   }
+  // A level every body of which has left (emptied slots, NaN centres, skip the min/max; bodies
+  // refiled to other levels) has no bounds: one cell at the origin, as a level's grid needs one.
+  if (!(min_x <= max_x)) min_x = max_x = min_y = max_y = 0.0;
   // Half a cell below the lowest centre: scenes built on a lattice (stacks, rows) then have
   // their centres mid-cell, and a query around a box spans 3 cells a side, not 4.
   origin_x = min_x - 0.5 * cell;

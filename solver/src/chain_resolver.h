@@ -42,6 +42,9 @@ class ChainResolver {
   std::size_t reach_jumps() const { return state_.reach_jumps(); }
   // The slots were renumbered: forgets every per-body mark and the near pairs.
   void forget_slots();
+  // The next step reads a squeeze this one or the last remembered (ForceStatic::kept_squeeze):
+  // besides the bodies, the only state a step hands the next.
+  bool remembers_squeezes() const { return walls_.remembers_squeezes(); }
 
  private:
   enum class Stage : std::uint8_t { kBack, kForward };

@@ -39,6 +39,8 @@ class ForceStatic {
   void begin_step(std::size_t bodies);
   // The slots were renumbered: forgets which bodies were squeezed.
   void forget_slots();
+  // Some row was squeezed this step or the last: the next step reads what this one remembered.
+  bool remembers_squeezes() const { return squeezes_ != 0; }
   // How deep a placed against b along axis stays: the overlap they had when the step began when
   // both were in a squeezed row the step before (a crushed row keeps its squeeze, and the step
   // adds only what it closes), else 0.

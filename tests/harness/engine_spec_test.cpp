@@ -10,7 +10,8 @@ namespace {
 
 TEST(EngineSpec, DefaultsAreFilledInCanonicalOrder) {
   EXPECT_EQ(parse_engine_spec("chain").str(),
-            "chain:variant=modern,velocity=inelastic,passes=4,budget=64,depth=2048,threads=1");
+            "chain:variant=modern,velocity=inelastic,passes=4,budget=64,depth=2048,threads=1,"
+            "skip_rest=1");
   EXPECT_EQ(parse_engine_spec("box2d").str(),
             "box2d:vel_iters=8,pos_iters=3,substeps=1,skin=compensate,warm=1,ccd=1,sleep=0");
   // Given out of order, printed in canonical order.

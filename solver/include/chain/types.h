@@ -131,6 +131,11 @@ struct StepStats {
   // solver's search work, which stays near-linear in bodies plus contacts whatever the step's
   // pushes did (saturates at 2^32 - 1).
   std::uint32_t candidates = 0;
+  // 1 if the step was skipped as the fixed point it was (modern, WorldDef::skip_rest): the two
+  // steps before it each left every movable body where it began them and at velocity +0, nothing
+  // was changed since, and dt and the squeezes remembered were the same, so the step would have
+  // rebuilt the same bits. The other counts are then the last full step's; candidates is 0.
+  std::uint32_t skipped = 0;
 };
 
 // Where the last step's time went: wall time per stage of World::step, in the order the stages

@@ -1,0 +1,188 @@
+// SPDX-License-Identifier: MIT
+// What a World holds: its bodies, the stages that step them and what the last step reported,
+// shared by the files that implement World (world.cpp steps and changes it, world_state.cpp
+// reads it).
+#pragma once
+
+#include <chain/world.h>
+
+#include "bodies.h"
+#include "broadphase.h"
+#include "chain_resolver.h"
+#include "friction.h"
+#include "layout.h"
+#include "motion.h"
+#include "rest.h"
+#include "seed2014_resolver.h"
+#include "stage_clock.h"
+#include "step_context.h"
+#include "validate.h"
+#include "velocity_response.h"
+#include "worker_pool.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace chain {
+
+struct World::Impl {
+  WorldDef def;
+  detail::Bodies bodies;
+  std::vector<std::uint32_t> slot_of_id;      // indexed by BodyId value; kNoSlot once destroyed
+  std::vector<std::uint32_t> creation_order;  // dynamic slots, oldest first
+  // By BodyId value, destroyed ones included (as slot_of_id): the canonical sort's tie-break.
+  std::vector<detail::Origin> origin_of_id;
+  // Bodies created or destroyed since the last step: prepare() files them. `full` when that
+  // takes the canonical re-sort (anything but dynamic bodies created into and destroyed from an
+  // already sorted modern world).
+  bool dirty = false;
+  bool full = false;
+  bool sorted_once = false;           // canonicalize() has run: the world has a canonical order
+  std::uint32_t committed = 0;        // slots before those created since the last step
+  std::vector<std::uint32_t> empty;   // dead dynamic slots (Bodies::kill), for created bodies
+  std::vector<std::uint32_t> placed;  // place_created()'s buffer
+  detail::Broadphase broadphase;
+  detail::VelocityResponse response;
+  detail::Motion motion;
+  detail::Friction friction;
+  std::size_t rough_bodies = 0;  // bodies with friction > 0: friction runs only while there are
+  detail::ChainResolver modern;
+  detail::Seed2014Resolver seed2014;
+  detail::Layout layout;
+  detail::Rest rest;
+  StepStats stats;
+  std::vector<detail::CrushRecord> crush_records;
+  std::vector<CrushEvent> crushes;
+  detail::WorkerPool pool;  // def.threads - 1 workers
+  bool profiling = false;
+  StepProfile profile;
+
+  std::uint32_t slot(BodyId id) const {
+    if (id.value >= slot_of_id.size() || slot_of_id[id.value] == detail::kNoSlot) {
+      throw std::invalid_argument("no body with id " + std::to_string(id.value) + " in this world");
+    }
+    return slot_of_id[id.value];
+  }
+
+  void canonicalize() {
+    bodies.drop_dead();
+    empty.clear();
+    bodies.canonicalize(slot_of_id, origin_of_id);
+    committed = bodies.size();
+    sorted_once = true;
+    broadphase.configure(bodies);
+    layout.reset(bodies.size());
+    response.reserve(bodies.size());
+    list_creation_order();
+    dirty = false;
+  }
+
+  void list_creation_order() {
+    creation_order.clear();
+    for (const std::uint32_t s : slot_of_id) {
+      if (s != detail::kNoSlot && s < bodies.dynamic_end) creation_order.push_back(s);
+    }
+  }
+
+  std::uint32_t live() const { return bodies.size() - static_cast<std::uint32_t>(empty.size()); }
+
+  // Whether a destroyed body can leave its slot empty (no other slot moves, nothing re-sorted).
+  bool kill_in_place(std::uint32_t s) const {
+    return sorted_once && !full && def.variant == Variant::kModern && s < committed &&
+           bodies.type[s] == BodyType::kDynamic;
+  }
+
+  // The dynamic bodies created since the last step take empty slots: sorted among themselves by
+  // what they are (never by creation order), into the empty slots in ascending order, each filed
+  // in the broadphase as a body filed again is. False (nothing changed) when there are not enough
+  // empty slots or a body is larger than every broadphase level's: canonicalize() then.
+  bool place_created() {
+    const std::uint32_t n = bodies.size();
+    if (n - committed > empty.size()) return false;
+    placed.clear();
+    for (std::uint32_t p = committed; p < n; ++p) {
+      if (!broadphase.fits(std::max(bodies.hx(p), bodies.hy(p)))) return false;
+      placed.push_back(p);
+    }
+    bodies.sort_by_state(placed, origin_of_id);
+    std::sort(empty.begin(), empty.end());
+    for (std::size_t k = 0; k < placed.size(); ++k) {
+      bodies.move_slot(placed[k], empty[k]);
+      slot_of_id[bodies.id[empty[k]]] = empty[k];
+      if (bodies.restitution[empty[k]] > 0.0) bodies.bounces = true;
+    }
+    bodies.truncate(committed);
+    for (std::size_t k = 0; k < placed.size(); ++k)
+      broadphase.insert(bodies, empty[k]);
+    empty.erase(empty.begin(), empty.begin() + static_cast<std::ptrdiff_t>(placed.size()));
+    return true;
+  }
+
+  // Files bodies created or destroyed since the last step and clears the last step's records.
+  void prepare() {
+    if (dirty) {
+      if (full || !place_created()) canonicalize();
+      dirty = full = false;
+    }
+    stats = StepStats{};
+    crush_records.clear();
+    response.clear();
+    std::fill(bodies.touching.begin(), bodies.touching.end(), detail::TouchBits{});
+  }
+
+  // The step's counts and crush events, for last_step_stats() and crush_events().
+  void file_report(std::uint64_t examined_before) {
+    stats.candidates = static_cast<std::uint32_t>(
+        std::min<std::uint64_t>(broadphase.examined() - examined_before, 0xffffffffu));
+    crushes.clear();
+    for (const detail::CrushRecord& r : crush_records) {
+      crushes.push_back({BodyId{bodies.id[r.body]}, BodyId{bodies.id[r.anchor]},
+                         BodyId{bodies.id[r.blocker]}, r.axis});
+    }
+  }
+
+  // Stores the bodies in the order the step reached them, when the layout says it pays (modern).
+  void renumber_if_due() {
+    if (!layout.due()) return;  // the jumps are counted only when a renumbering may follow
+    const std::span<const std::uint32_t> order =
+        layout.plan(bodies, modern.reach_order(), modern.reach_jumps());
+    if (!order.empty()) {
+      renumber(order);
+      stats.renumbered = 1;
+      rest.disturb();  // the same bodies, but solved in another order
+    }
+  }
+
+  // A step at rest (detail::Rest): the last solved step's report stands, and the layout counts
+  // the step, with that step's reach order, as a solved one would.
+  void skip_step() {
+    stats.renumbered = 0;
+    stats.candidates = 0;
+    stats.skipped = 1;
+    renumber_if_due();
+  }
+
+  // Slot i takes the body of slot order[i]; everything that names slots follows.
+  void renumber(std::span<const std::uint32_t> order) {
+    bodies.permute(order, layout.spare());
+    empty.clear();
+    for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+      if (bodies.dead(i)) {
+        empty.push_back(i);
+      } else {
+        slot_of_id[bodies.id[i]] = i;
+      }
+    }
+    list_creation_order();
+    broadphase.renumber(order);
+    modern.forget_slots();
+  }
+};
+
+}  // namespace chain

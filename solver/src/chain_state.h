@@ -42,11 +42,13 @@ class ChainState {
   template <class Out>
   bool gather_overlaps(StepContext& ctx, std::uint32_t around, Out& out,
                        const OverlapTest& test) const {
-    if (!ctx.broadphase.near_pairs_hold()) [[unlikely]]
+    if (!ctx.broadphase.near_pairs_hold() && ctx.broadphase.near_stale(around)) [[unlikely]]
       return gather_overlaps_refiled(ctx, around, out);
     // Every body that moved less than the broadphase's refile distance since the near pairs were
     // taken closed by less than the slack with any other such body: every one of them that
-    // overlaps `around` now is among its near pairs.
+    // overlaps `around` now is among its near pairs. A body filed again since was filed too far
+    // from `around` to overlap it (near_stale), or `around` would take the path above: its near
+    // list is the whole answer still.
     const std::span<const std::uint32_t> list = near(around);
     const std::uint32_t dynamic_end = ctx.bodies.dynamic_end;
     bool immovable = false;

@@ -2,6 +2,7 @@
 // The broadphase finds exactly the overlapping pairs a brute-force scan finds, whatever the
 // mix of sizes, and still finds a pair after a push moved a body out of its cell.
 #include "broadphase.h"
+#include "step_context.h"
 
 #include <gtest/gtest.h>
 
@@ -244,6 +245,62 @@ TEST_P(BroadphasePairs, EmptiedAndRefilledSlotsAreFoundWhereTheyAre) {
     bp.for_each_stale_overlap(b, i, tol, [&](std::uint32_t j) { gathered.insert(j); });
     EXPECT_EQ(gathered, expected) << "body " << i << ", from its near pairs";
   }
+}
+
+// A few bodies filed again far from where they were (a chain's far pushes), the others moved
+// within the refile distance: every body that no body filed again came near (near_stale() false)
+// overlaps exactly the bodies of its near list it overlaps now, none of them stale, so its query
+// may take its near list whole (ChainState::gather_overlaps) while others are stale.
+TEST_P(BroadphasePairs, ABodyNoRefiledBodyCameNearHasItsOverlapsInItsNearList) {
+  const Mix m = GetParam();
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Bodies b = random_bodies(13, m.n, m.spread, m.min_half, m.max_half);
+  Broadphase bp;
+  bp.configure(b);
+  bp.build(b);
+  std::vector<std::vector<std::uint32_t>> near(b.size());
+  bp.for_each_near_pair(b, [&](std::uint32_t i, std::uint32_t j) {
+    near[i].push_back(j);
+    near[j].push_back(i);
+  });
+  for (std::uint32_t i = 0; i < b.dynamic_end; ++i) {
+    const bool far = unit(rng) < 0.05;
+    for (int k = 0; k < 2; ++k) {
+      b.pos(k, i) += far ? (unit(rng) - 0.5) * m.spread : (unit(rng) - 0.5) * bp.refile_distance();
+    }
+    bp.note_move(i, b.x(i), b.y(i));
+  }
+  ASSERT_FALSE(bp.near_pairs_hold());
+  const double tol = 1e-9;
+  const Pairs truth = brute_force(b, tol);
+  std::vector<std::set<std::uint32_t>> overlaps(b.size());
+  for (const auto& [p, q] : truth)
+    overlaps[p].insert(q), overlaps[q].insert(p);
+  std::size_t whole = 0, stale_near = 0;
+  for (std::uint32_t i = 0; i < b.size(); ++i) {
+    if (bp.near_stale(i)) {
+      ++stale_near;
+      continue;
+    }
+    ++whole;
+    EXPECT_FALSE(bp.stale(i));
+    std::set<std::uint32_t> found;
+    for (const std::uint32_t j : near[i]) {
+      if (overlapping(b, i, j, tol)) {
+        EXPECT_FALSE(bp.stale(j)) << "body " << i << " overlaps " << j << ", filed again near it";
+        found.insert(j);
+      }
+    }
+    std::set<std::uint32_t> expected = overlaps[i];
+    if (b.immovable(i)) std::erase_if(expected, [&](std::uint32_t j) { return b.immovable(j); });
+    EXPECT_EQ(found, expected) << "body " << i;
+  }
+  // Where bodies span a good part of the scene (TinyAndHuge), every body is near a stale one.
+  if (4.0 * m.max_half < m.spread) {
+    EXPECT_GT(whole, 0u);
+  }
+  EXPECT_GT(stale_near, 0u);
 }
 
 // A size level every body of which has left (here: emptied slots, whose NaN centres give no

@@ -163,7 +163,7 @@ void World::step(double dt) {
 
   w.file_report(examined);
   if (modern) {
-    w.rest.after_step(w.bodies, dt);
+    if (w.def.skip_rest) w.rest.after_step(w.bodies, dt);
     w.renumber_if_due();
   }
   clock.lap(w.profile.layout);

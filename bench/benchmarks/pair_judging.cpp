@@ -15,10 +15,15 @@ PairJudging::PairJudging(const Scene& scene, const EngineSpec& spec, int warmup,
   const auto engine = make_engine(spec, scene);
   const Lifetimes lives(scene);
   Presence presence(scene);  // bodies that come and go: pairs of two bodies in the step only
+  // As `run` steps (runner.cpp), warm-up and window alike: the bodies leaving at a step go before
+  // it, those entering at the next state come after it. Warmed up with apply() and timed with
+  // this, the bodies entering at the first timed step were never added, and the first of them to
+  // leave was removed from an engine that never had it.
   int step = 0;
   for (; step < warmup; ++step) {
-    lives.apply(*engine, step);
+    lives.leave(*engine, step);
     engine->step(step);
+    lives.enter(*engine, step + 1);
   }
   BodyState before = initial_state(scene), after = before;
   engine->read_state(after);

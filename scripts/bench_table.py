@@ -82,6 +82,17 @@ def listed(context, key):
     return [item for item in context.get(key, "").split(",") if item]
 
 
+def counterpart(context, subject, engine):
+    """The subject's row `engine` is set against, like against like: the subject as it is for an
+    engine that skips what rests (chainbench_sleeping: sleep=1), the subject solving every step
+    (chainbench_subject_solving: skip_rest=0) for one that solves every body every step, and the
+    subject itself for that solving row (what skipping buys)."""
+    solving = context.get("chainbench_subject_solving", "")
+    if not solving or engine == solving or engine in listed(context, "chainbench_sleeping"):
+        return subject
+    return solving
+
+
 def accuracy_runs(context, runs, exe, out_dir):
     """Runs every (family, size) row's scene once in each engine it was timed in, against the
     reference, and returns {(family, size): (run JSON, steps or None)}. Steps are capped so that
@@ -214,7 +225,8 @@ def headline(context, runs, accuracy, subject):
         cells = []
         for e in others:
             error = answer_error(accuracy, (family, size), e)
-            cells.append(f"{ms(runs[(family, e, size)]) / ms(sub):.1f}x" + (f" ({error})" if error else ""))
+            against = runs.get((family, counterpart(context, subject, e), size), sub)
+            cells.append(f"{ms(runs[(family, e, size)]) / ms(against):.1f}x" + (f" ({error})" if error else ""))
         mine = f" {answer_error(accuracy, (family, size), subject) or '-'} |" if with_error else ""
         out.append(f"| {row_label(recipes, family, size)} | {int(sub.get('bodies', 0)):,} | "
                    f"{fmt_ms(ms(sub))} |{mine} " + " | ".join(cells) + " |")
@@ -259,8 +271,9 @@ def summary(context, runs, subject):
     def span(rows):
         parts = []
         for e in others:
-            r = sorted((ms(runs[(f, e, sz)]) / ms(runs[(f, subject, sz)]), f, sz) for f, sz in rows
-                       if (f, e, sz) in runs and (f, subject, sz) in runs)
+            m = counterpart(context, subject, e)
+            r = sorted((ms(runs[(f, e, sz)]) / ms(runs[(f, m, sz)]), f, sz) for f, sz in rows
+                       if (f, e, sz) in runs and (f, m, sz) in runs)
             if not r:
                 continue
             (low, lf, ls), (high, hf, hs) = r[0], r[-1]
@@ -271,8 +284,12 @@ def summary(context, runs, subject):
                          f"`{e}`{marks.get(e, '')} {times_faster(low)} ({row_label(recipes, lf, ls)})")
         return "; ".join(parts)
 
+    solving = context.get("chainbench_subject_solving", "")
     out = [f"**`{subject}` against every engine, with sleeping off and on.** How many times faster "
-           f"`{subject}` steps, on the rows of the table below that both ran"]
+           f"`{subject}` steps, on the rows of the table below that both ran"
+           + (f" (like against like: an engine that sleeps against `{subject}`, which skips a world "
+              f"at rest; one that solves every body every step against `{solving}`, which does too)"
+              if solving else "")]
     moving_rows = [g for g in groups if g[0] in moving]
     other_rows = [g for g in groups if g[0] not in moving]
     if moving_rows and other_rows:
@@ -280,14 +297,20 @@ def summary(context, runs, subject):
                    f"or are pushed, {span(other_rows)}.")
     else:
         out[0] += f": {span(groups)}."
-    lost = sorted(((ms(runs[(f, subject, sz)]) / ms(runs[(f, e, sz)]), e, f, sz)
+    lost = sorted(((ms(runs[(f, counterpart(context, subject, e), sz)]) / ms(runs[(f, e, sz)]), e, f, sz)
                    for f, sz in groups for e in others
-                   if (f, e, sz) in runs and (f, subject, sz) in runs
-                   and ms(runs[(f, e, sz)]) < ms(runs[(f, subject, sz)])), reverse=True)
+                   if (f, e, sz) in runs and (f, counterpart(context, subject, e), sz) in runs
+                   and ms(runs[(f, e, sz)]) < ms(runs[(f, counterpart(context, subject, e), sz)])),
+                  reverse=True)
     if lost:
+        def loss(faster, e, f, sz):
+            m = counterpart(context, subject, e)
+            return (f"`{e}`{marks.get(e, '')} steps {row_label(recipes, f, sz)} {faster:.1f}x faster"
+                    + (f" than `{m}`" if m != subject else "")
+                    + f" ({times((ms(runs[(f, e, sz)]), ms(runs[(f, m, sz)])))} per step)")
+
         out[0] += (f" **Where `{subject}` loses:** " + "; ".join(
-            f"`{e}`{marks.get(e, '')} steps {row_label(recipes, f, sz)} {faster:.1f}x faster "
-            f"({times((ms(runs[(f, e, sz)]), ms(runs[(f, subject, sz)])))} per step)"
+            loss(faster, e, f, sz)
             for faster, e, f, sz in lost) + ".")
     else:
         out[0] += f" No engine steps any row faster than `{subject}`."
@@ -303,7 +326,8 @@ def results_table(context, runs, accuracy, subject, reference):
     engines, groups = ordered(runs)
     if not groups:  # a run of the harness rows alone, say
         return []
-    ratio_title = f" {reference} / {subject} |" if reference and reference != subject else ""
+    against = counterpart(context, subject, reference)
+    ratio_title = f" {reference} / {against} |" if reference and reference != subject else ""
     error_title = (f" {subject} vs {reference} max m | meets the scene's answer |"
                    if accuracy and ratio_title else "")
     out = ["| scene | bodies | " + " | ".join(f"{e} ms/step" for e in engines) + " |" + ratio_title +
@@ -320,7 +344,7 @@ def results_table(context, runs, accuracy, subject, reference):
             cells.append(fmt_ms(t[e]) + (f" ({degraded:.0%} of steps cut short)" if degraded else ""))
         ratio = ""
         if ratio_title:
-            ratio = (f" {t[reference] / t[subject]:.1f}x |" if t.get(reference) and t.get(subject)
+            ratio = (f" {t[reference] / t[against]:.1f}x |" if t.get(reference) and t.get(against)
                      else " - |")
         if error_title:
             error, answer = error_cells(accuracy, (family, size), subject)

@@ -335,6 +335,27 @@ void register_all(const std::string& engine_list) {
   }
   // Every engine's benchmark settings, named by their labels: pyramid/LABEL/100.
   const auto engines = benchmarked(engine_list);
+  // Like against like, for the tables' ratios: the engines that skip what rests (sleep=1), whose
+  // times are set against the subject's own, and the subject solving every step (skip_rest=0),
+  // against which the others' are.
+  auto setting = [](const EngineSpec& spec, std::string_view key) {
+    for (const auto& [k, v] : spec.settings) {
+      if (k == key) return v;
+    }
+    return std::string();
+  };
+  std::string sleeping;
+  for (const auto& [spec, max_bodies] : engines) {
+    if (setting(spec, "sleep") == "1") {
+      if (!sleeping.empty()) sleeping += ',';
+      sleeping += spec.label();
+    }
+    if (spec.engine == subject.engine && setting(spec, "skip_rest") == "0" &&
+        setting(subject, "skip_rest") == "1") {
+      benchmark::AddCustomContext("chainbench_subject_solving", spec.label());
+    }
+  }
+  benchmark::AddCustomContext("chainbench_sleeping", sleeping);
   for (const Family& family : benchmark_families()) {
     // The smallest size stands for the family when asking what its scenes need.
     const Scene sample = make_scene(family.scene, family_sets(family, family.sizes.front()));

@@ -277,5 +277,32 @@ class AccuracyRunsTest(unittest.TestCase):
         self.assertNotIn("--steps", args)
 
 
+class LikeAgainstLikeTest(unittest.TestCase):
+    """Where the subject skips a world at rest (chain, skip_rest=1) and a row of it solves every
+    step (chainbench_subject_solving), an engine that sleeps is set against the subject and one
+    that does not against the solving row, in the summary and the results table's ratio."""
+    CONTEXT = {"chainbench_subject": "fast", "chainbench_reference": "ref",
+               "chainbench_subject_solving": "fast:skip_rest=0", "chainbench_sleeping": "ref:sleep=1",
+               "chainbench_family_stack": "stack -", "date": "today", "num_cpus": 2, "mhz_per_cpu": 1}
+    RUNS = {("stack", "fast", ""): bench("stack/fast", 0.001, 16, 60),
+            ("stack", "fast:skip_rest=0", ""): bench("stack/fast:skip_rest=0", 0.1, 16, 6000),
+            ("stack", "ref", ""): bench("stack/ref", 1.0, 16, 60000),
+            ("stack", "ref:sleep=1", ""): bench("stack/ref:sleep=1", 0.0005, 16, 30)}
+
+    def test_each_engine_is_set_against_its_like(self):
+        text = bench_table.tables(self.CONTEXT, self.RUNS)
+        summary = text.splitlines()[0]
+        # ref solves every step: 1.0 / 0.1; ref:sleep=1 skips too: 0.0005 / 0.001, and wins.
+        self.assertIn("`ref` 10.0x (`stack`)", summary)
+        self.assertIn("`ref:sleep=1` 0.5x (`stack`)", summary)
+        self.assertIn("`fast:skip_rest=0` 100.0x (`stack`)", summary)
+        self.assertIn("**Where `fast` loses:** `ref:sleep=1` steps `stack` 2.0x faster (", summary)
+        self.assertIn("like against like", summary)
+        header = next(line for line in text.splitlines() if line.startswith("| scene | bodies |"))
+        self.assertIn("| ref / fast:skip_rest=0 |", header)
+        row = next(line for line in text.splitlines() if line.startswith("| `stack` |"))
+        self.assertIn("| 10.0x |", row)
+
+
 if __name__ == "__main__":
     unittest.main()

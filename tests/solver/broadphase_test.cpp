@@ -54,6 +54,24 @@ Pairs brute_force(const Bodies& b, double tol) {
   return out;
 }
 
+// Every body's near bodies, as for_each_near_pair gives the pairs.
+std::vector<std::vector<std::uint32_t>> near_lists(Broadphase& bp, const Bodies& b) {
+  std::vector<std::vector<std::uint32_t>> near(b.size());
+  bp.for_each_near_pair(b, [&](std::uint32_t i, std::uint32_t j) {
+    near[i].push_back(j);
+    near[j].push_back(i);
+  });
+  return near;
+}
+
+// The pairs as each body's set of the others.
+std::vector<std::set<std::uint32_t>> per_body(const Pairs& pairs, std::size_t n) {
+  std::vector<std::set<std::uint32_t>> out(n);
+  for (const auto& [p, q] : pairs)
+    out[p].insert(q), out[q].insert(p);
+  return out;
+}
+
 struct Mix {
   const char* name;
   int n;
@@ -186,11 +204,7 @@ TEST_P(BroadphasePairs, EmptiedAndRefilledSlotsAreFoundWhereTheyAre) {
   Broadphase bp;
   bp.configure(b);
   bp.build(b);
-  std::vector<std::vector<std::uint32_t>> near(b.size());
-  bp.for_each_near_pair(b, [&](std::uint32_t i, std::uint32_t j) {
-    near[i].push_back(j);
-    near[j].push_back(i);
-  });
+  const std::vector<std::vector<std::uint32_t>> near = near_lists(bp, b);
   std::vector<std::uint32_t> emptied;
   for (std::uint32_t i = 0; i < b.dynamic_end; ++i) {
     if (unit(rng) < 1.0 / 3.0) {
@@ -221,9 +235,7 @@ TEST_P(BroadphasePairs, EmptiedAndRefilledSlotsAreFoundWhereTheyAre) {
   // as its min/max form would not leave it out by itself.
   Pairs truth = brute_force(b, tol);
   std::erase_if(truth, [&](const auto& pair) { return b.dead(pair.first) || b.dead(pair.second); });
-  std::vector<std::set<std::uint32_t>> overlaps(b.size());
-  for (const auto& [p, q] : truth)
-    overlaps[p].insert(q), overlaps[q].insert(p);
+  const std::vector<std::set<std::uint32_t>> overlaps = per_body(truth, b.size());
   for (std::uint32_t i = 0; i < b.size(); ++i) {
     if (b.dead(i)) continue;
     std::set<std::uint32_t> found;
@@ -259,11 +271,7 @@ TEST_P(BroadphasePairs, ABodyNoRefiledBodyCameNearHasItsOverlapsInItsNearList) {
   Broadphase bp;
   bp.configure(b);
   bp.build(b);
-  std::vector<std::vector<std::uint32_t>> near(b.size());
-  bp.for_each_near_pair(b, [&](std::uint32_t i, std::uint32_t j) {
-    near[i].push_back(j);
-    near[j].push_back(i);
-  });
+  const std::vector<std::vector<std::uint32_t>> near = near_lists(bp, b);
   for (std::uint32_t i = 0; i < b.dynamic_end; ++i) {
     const bool far = unit(rng) < 0.05;
     for (int k = 0; k < 2; ++k) {
@@ -274,9 +282,7 @@ TEST_P(BroadphasePairs, ABodyNoRefiledBodyCameNearHasItsOverlapsInItsNearList) {
   ASSERT_FALSE(bp.near_pairs_hold());
   const double tol = 1e-9;
   const Pairs truth = brute_force(b, tol);
-  std::vector<std::set<std::uint32_t>> overlaps(b.size());
-  for (const auto& [p, q] : truth)
-    overlaps[p].insert(q), overlaps[q].insert(p);
+  const std::vector<std::set<std::uint32_t>> overlaps = per_body(truth, b.size());
   std::size_t whole = 0, stale_near = 0;
   for (std::uint32_t i = 0; i < b.size(); ++i) {
     if (bp.near_stale(i)) {

@@ -81,15 +81,6 @@ auto state_fields(const Bodies& b, std::uint32_t i, std::span<const Origin> orig
                     order_key(o.vy), b.id[i]);
 }
 
-// v[i] = old v[order[i]], through `spare`, which is left holding v's old buffer for the next.
-template <class T>
-void gather(std::vector<T>& v, std::span<const std::uint32_t> order, std::vector<T>& spare) {
-  spare.resize(v.size());
-  for (std::size_t i = 0; i < order.size(); ++i)
-    spare[i] = v[order[i]];
-  v.swap(spare);
-}
-
 }  // namespace
 
 Origin origin_of(const BodyDef& def) {
@@ -100,6 +91,7 @@ Origin origin_of(const BodyDef& def) {
 
 void Bodies::append(const BodyDef& def, std::uint32_t body_id) {
   const bool dynamic = def.type == BodyType::kDynamic;
+  each_array([](auto& v) { reserve_one_more(v); });
   box.push_back({{def.center.x, def.center.y}, {def.half_extents.x, def.half_extents.y}});
   vx.push_back(def.type == BodyType::kStatic ? 0.0 : def.velocity.x);
   vy.push_back(def.type == BodyType::kStatic ? 0.0 : def.velocity.y);
@@ -212,18 +204,8 @@ void Bodies::sort_by_state(std::span<std::uint32_t> slots,
             [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
 }
 
-void Bodies::Spare::reserve(std::size_t n) {
-  box.reserve(n), point.reserve(n), real.reserve(n), byte.reserve(n), touch.reserve(n),
-      word.reserve(n), type.reserve(n);
-}
-
 void Bodies::permute(std::span<const std::uint32_t> order, Spare& spare) {
-  gather(box, order, spare.box);
-  gather(start, order, spare.point);
-  for (auto* v : {&vx, &vy, &mass, &gravity_scale, &restitution, &friction, &drive_x, &drive_y})
-    gather(*v, order, spare.real);
-  gather(driven, order, spare.byte), gather(touching, order, spare.touch);
-  gather(type, order, spare.type), gather(id, order, spare.word);
+  each_array([&](auto& v) { spare.gather(v, order); });
 }
 
 }  // namespace chain::detail

@@ -12,8 +12,12 @@
 #include <chain/types.h>
 #include <chain/world.h>
 
+#include "buffer.h"
+
 #include <cstdint>
+#include <cstring>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace chain::detail {
@@ -118,16 +122,25 @@ struct Bodies {
   // BodyId value too, breaks ties between bodies whose fields are all equal.
   void canonicalize(std::vector<std::uint32_t>& slot_of_id, std::span<const Origin> origin_of_id);
 
-  // Buffers permute() fills and swaps in, kept between calls so that it allocates nothing.
-  struct Spare {
-    std::vector<Box> box;
-    std::vector<Point> point;
-    std::vector<double> real;
-    std::vector<std::uint8_t> byte;
-    std::vector<TouchBits> touch;
-    std::vector<std::uint32_t> word;
-    std::vector<BodyType> type;
-    void reserve(std::size_t n);
+  // One buffer, as large as the widest per-slot array, that permute() copies each array through in
+  // turn and keeps between calls, so that it allocates nothing: 32 bytes a body, where a buffer
+  // per element type held 63.
+  class Spare {
+   public:
+    void reserve(std::size_t n) { raw_.reserve(n); }
+    // v[i] takes the old v[order[i]] for every i (order is a permutation of v's indices).
+    template <class T>
+    void gather(std::vector<T>& v, std::span<const std::uint32_t> order) {
+      static_assert(std::is_trivially_copyable_v<T> && sizeof(T) <= sizeof(Box));
+      if (raw_.size() < order.size()) resize_buffer(raw_, order.size());
+      auto* const out = reinterpret_cast<unsigned char*>(raw_.data());
+      for (std::size_t i = 0; i < order.size(); ++i)
+        std::memcpy(out + i * sizeof(T), &v[order[i]], sizeof(T));
+      if (!order.empty()) std::memcpy(v.data(), out, order.size() * sizeof(T));
+    }
+
+   private:
+    std::vector<Box> raw_;
   };
   // Slot i takes what slot order[i] held, for every i (order is a permutation of the slots).
   void permute(std::span<const std::uint32_t> order, Spare& spare);

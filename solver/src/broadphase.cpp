@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "broadphase.h"
 
+#include "buffer.h"
+
 #include <bit>
 #include <limits>
 #include <utility>
@@ -31,8 +33,9 @@ void Broadphase::configure(const Bodies& bodies) {
   const std::uint32_t n = bodies.size();
   level_of_.assign(n, 0);
   entry_of_.assign(n, 0);
+  // Exact sizes: configure() runs when the body set changes, and costs O(n) then anyway.
+  ref_.reserve(n);
   ref_.resize(n);
-  spare_.resize(n);
   in_overlay_.assign(n, 0);
   overlay_cx_.assign(n, 0);
   overlay_cy_.assign(n, 0);
@@ -88,22 +91,18 @@ void Broadphase::configure(const Bodies& bodies) {
     level.mask = table - 1;
     level.cell_start.assign(table + 1, 0);
     level.cursor.assign(table, 0);
-    level.keys.resize(count);
-    level.key_x.resize(count);
-    level.key_y.resize(count);
-    level.entries.resize(count);
+    level.keys.reserve(count), level.keys.resize(count);
+    level.entries.reserve(count), level.entries.resize(count);
     level.overlay_head.assign(table, kNoSlot);
   }
 }
 
-void Broadphase::renumber(std::span<const std::uint32_t> order) {
+void Broadphase::renumber(std::span<const std::uint32_t> order, Bodies::Spare& spare) {
   ++generation_;
   // Until the next build() only note_move() runs: it needs each body's filed place under its new
   // slot. The overlay is emptied; the next build() files everything anew.
   clear_overlay();
-  for (std::uint32_t slot = 0; slot < order.size(); ++slot)
-    spare_[slot] = ref_[order[slot]];
-  ref_.swap(spare_);
+  spare.gather(ref_, order);
   // Slot order within each level, as configure() leaves it; the lists keep their capacity.
   for (Level& level : levels_)
     level.bodies.clear();
@@ -166,7 +165,7 @@ void Broadphase::clear_overlay() {
     level.overlay_members = 0;
   members_.clear();
   stale_ = 0;
-  ++mark_epoch_;
+  next_mark_epoch();
   unmarked_.clear();
 }
 
@@ -259,25 +258,25 @@ void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry
 
   // Counting sort by bucket; stable, so solve order holds within a bucket. The level may have
   // gained or lost slots since configure() (Broadphase::insert).
-  keys.resize(bodies.size()), key_x.resize(bodies.size()), key_y.resize(bodies.size());
-  entries.resize(bodies.size());
+  resize_buffer(keys, bodies.size());
+  resize_buffer(entries, bodies.size());
   std::fill(cell_start.begin(), cell_start.end(), 0u);
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     const std::uint32_t i = bodies[k];
-    key_x[k] = cell_x(b.x(i));
-    key_y[k] = cell_y(b.y(i));
-    keys[k] = bucket(key_x[k], key_y[k]);
+    keys[k] = bucket(cell_x(b.x(i)), cell_y(b.y(i)));
     ++cell_start[keys[k] + 1];
   }
   for (std::size_t k = 1; k < cell_start.size(); ++k)
     cell_start[k] += cell_start[k - 1];
   std::copy(cell_start.begin(), cell_start.end() - 1, cursor.begin());
   for (std::size_t k = 0; k < bodies.size(); ++k) {
+    // The cells again (a few operations) rather than kept from the pass above: 8 bytes a body.
     const std::uint32_t i = bodies[k];
     entry_of[i] = cursor[keys[k]]++;
     entries[entry_of[i]] = Entry{
-        i,      key_x[k], key_y[k], static_cast<std::uint8_t>(b.immovable(i) ? 1 : 0), 0, b.x(i),
-        b.y(i), b.hx(i),  b.hy(i)};
+        i,      cell_x(b.x(i)), cell_y(b.y(i)), static_cast<std::uint8_t>(b.immovable(i) ? 1 : 0),
+        0,      b.x(i),         b.y(i),         b.hx(i),
+        b.hy(i)};
   }
 }
 

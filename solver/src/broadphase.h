@@ -36,9 +36,10 @@ class Broadphase {
  public:
   // Chooses levels and cells; call whenever the body set changes.
   void configure(const Bodies& bodies);
-  // The slots were renumbered (slot i was order[i]): files each body under its new slot. Like
-  // configure(), it changes generation(), and the next query needs build().
-  void renumber(std::span<const std::uint32_t> order);
+  // The slots were renumbered (slot i was order[i]): files each body under its new slot, through
+  // `spare` (the buffer Bodies::permute used). Like configure(), it changes generation(), and the
+  // next query needs build().
+  void renumber(std::span<const std::uint32_t> order, Bodies::Spare& spare);
   // Buckets every body at its current position.
   void build(const Bodies& bodies);
   // Whether a body of this largest half extent fits a level (no larger than the largest body of
@@ -171,7 +172,6 @@ class Broadphase {
     bool dense = true;                  // every cell has a bucket of its own
     std::vector<std::uint32_t> bodies;  // slots, in solve order
     std::vector<std::uint32_t> cell_start, cursor, keys;
-    std::vector<std::int32_t> key_x, key_y;
     std::vector<Entry> entries;               // grouped by bucket, solve order within a bucket
     std::vector<std::uint32_t> overlay_head;  // per bucket: first overlay body, or kNoSlot
     std::uint32_t overlay_members = 0;        // bodies of this level in the overlay: 0, no probe
@@ -225,6 +225,20 @@ class Broadphase {
   void mark_refiled() const;
   void clear_overlay();
   void unlink(std::uint32_t body);
+  // The counters above are 32 bits (4 bytes a body each, not 8): before one would wrap, every
+  // body's copy is reset, so that no old value matches or exceeds a new one.
+  void next_scan() {
+    if (scan_ < 0xfffffff0u) [[likely]]
+      return;
+    std::fill(epoch_of_.begin(), epoch_of_.end(), 0u);
+    scan_ = 0;
+  }
+  void next_mark_epoch() {
+    if (++mark_epoch_ != 0) [[likely]]
+      return;
+    std::fill(near_stale_.begin(), near_stale_.end(), 0u);
+    mark_epoch_ = 1;
+  }
   // fn(j) for every overlay body of level l filed in a cell the box (x +- rx, y +- ry) reaches.
   template <class Fn>
   void scan_overlay(std::size_t l, double x, double y, double rx, double ry, Fn&& fn) const;
@@ -238,24 +252,23 @@ class Broadphase {
   // Per slot, where the body was last filed (by build() or in the overlay): x and y together, as
   // every note_move() reads both.
   std::vector<Point> ref_;
-  std::vector<Point> spare_;  // renumber()'s buffer
   // The overlay, per slot: in it or not, its cell there, its bucket list's links, and the scan
   // after which it was last filed (stale when later than scan_).
   std::vector<std::uint8_t> in_overlay_;
   std::vector<std::int32_t> overlay_cx_, overlay_cy_;
   std::vector<std::uint32_t> next_, prev_;
-  std::vector<std::uint64_t> epoch_of_;
+  std::vector<std::uint32_t> epoch_of_;
   // Per slot: mark_epoch_ when some body filed again since the last scan or clear_overlay() was
   // filed near it (near_stale()).
-  mutable std::vector<std::uint64_t> near_stale_;
-  std::uint64_t mark_epoch_ = 1;
+  mutable std::vector<std::uint32_t> near_stale_;
+  std::uint32_t mark_epoch_ = 1;
   struct Filed {
     std::uint32_t body;
     double x, y;
   };
   mutable std::vector<Filed> unmarked_;  // places filed at since the marks were made
   std::vector<std::uint32_t> members_;   // overlay bodies, in the order they entered it
-  std::uint64_t scan_ = 0;               // near-pair scans so far
+  std::uint32_t scan_ = 0;               // near-pair scans so far, modulo next_scan()
   std::uint32_t stale_ = 0;              // bodies filed again since the last scan
   Point stale_lo_{}, stale_hi_{};        // around their boxes where they were filed since
   double margin_ = 0.0;                  // largest displacement from where a body is filed
@@ -357,12 +370,13 @@ void Broadphase::scan_all(double x, double y, double hx, double hy, double pad, 
 template <class Fn>
 void Broadphase::for_each_near_pair(const Bodies& bodies, Fn&& fn) {
   // Overlay bodies are filed where they are now: their near pairs are found from there.
+  next_scan();
   for (const std::uint32_t i : members_) {
     refile(i, bodies.x(i), bodies.y(i));
     epoch_of_[i] = scan_ + 1;
   }
   ++scan_;
-  ++mark_epoch_;
+  next_mark_epoch();
   unmarked_.clear();
   stale_ = 0;
   const double gap = -slack_;

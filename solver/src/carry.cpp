@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "carry.h"
 
+#include "buffer.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -37,7 +39,7 @@ void Carry::run(StepContext& ctx, ChainState& state, std::vector<SweepResult>& r
     if (results[i].carrier != kNoSlot) entries_.push_back(i);
   }
   if (entries_.empty()) return;
-  if (result_of_.size() != bodies.size()) result_of_.assign(bodies.size(), kNone);
+  if (result_of_.size() != bodies.size()) assign_buffer(result_of_, bodies.size(), kNone);
   for (std::uint32_t i = 0; i < results.size(); ++i)
     result_of_[results[i].body] = i;
   std::sort(entries_.begin(), entries_.end(), [&](std::uint32_t p, std::uint32_t q) {

@@ -5,6 +5,7 @@
 #include "chain_resolver.h"
 
 #include "box_overlap.h"
+#include "buffer.h"
 #include "entry_face.h"
 
 #include <algorithm>
@@ -35,7 +36,10 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     if (!fresh_grid_) ctx.broadphase.build(bodies);
     fresh_grid_ = false;
     near_generation_ = bp.generation();
+    // As many as the last scan found and a quarter more, before the scan pushes them one by one.
+    const std::size_t last = near_pairs_.size();
     near_pairs_.clear();
+    if (near_pairs_.capacity() < last + last / 4) near_pairs_.reserve(last + last / 4);
     ctx.broadphase.for_each_near_pair(bodies, [&](std::uint32_t i, std::uint32_t j) {
       near_pairs_.push_back({i, j});
     });
@@ -59,25 +63,27 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     };
     const std::uint32_t n = bodies.size();
     if (ctx.pool.threads() == 1 || n <= kBlock) {
-      // Into found_pairs_ (room for an entry each, kept from step to step), then copied: pushed
-      // back one by one, the walk kept its constants on the stack for the growing path's call
-      // and reloaded them at every body.
-      if (found_pairs_.size() < state_.lower_offset(n)) found_pairs_.resize(state_.lower_offset(n));
-      contacts_.assign(found_pairs_.begin(),
-                       found_pairs_.begin() + scan(0, n, found_pairs_.data()));
+      // Into near_pairs_ (room for an entry each: the near lists were made from it, and it is not
+      // read again until the next scan refills it), then copied: pushed back one by one, the
+      // walk kept its constants on the stack for the growing path's call and reloaded them at
+      // every body.
+      if (near_pairs_.size() < state_.lower_offset(n))
+        resize_buffer(near_pairs_, state_.lower_offset(n));
+      contacts_.assign(near_pairs_.begin(), near_pairs_.begin() + scan(0, n, near_pairs_.data()));
       return;
     }
-    // Blocks of bodies at once, each into its own stretch of found_ (as long as its lower lists),
-    // then joined in block order: slot order, as one thread.
+    // Blocks of bodies at once, each into its own stretch of near_pairs_ (as long as its lower
+    // lists), then joined in block order: slot order, as one thread.
     const std::uint32_t blocks = (n + kBlock - 1) / kBlock;
     block_found_.resize(blocks);
-    found_pairs_.resize(state_.lower_offset(n));
+    if (near_pairs_.size() < state_.lower_offset(n))
+      resize_buffer(near_pairs_, state_.lower_offset(n));
     ctx.pool.run(blocks, [&](std::uint32_t k) {
       const std::uint32_t begin = k * kBlock, end = std::min(n, begin + kBlock);
-      block_found_[k] = scan(begin, end, found_pairs_.data() + state_.lower_offset(begin));
+      block_found_[k] = scan(begin, end, near_pairs_.data() + state_.lower_offset(begin));
     });
     for (std::uint32_t k = 0; k < blocks; ++k) {
-      const auto from = found_pairs_.begin() + state_.lower_offset(k * kBlock);
+      const auto from = near_pairs_.begin() + state_.lower_offset(k * kBlock);
       contacts_.insert(contacts_.end(), from, from + block_found_[k]);
     }
     return;
@@ -129,8 +135,8 @@ void ChainResolver::order_contacts(StepContext& ctx) {
   // Number the dynamic bodies the contacts touch: the work is in proportion to the contacts, not
   // to the world.
   if (local_.size() != bodies.size()) {
-    local_.assign(bodies.size(), 0);
-    local_mark_.assign(bodies.size(), 0);
+    assign_buffer(local_, bodies.size(), 0);
+    assign_buffer(local_mark_, bodies.size(), 0);
     mark_ = 0;
   }
   if (++mark_ == 0) {
@@ -171,7 +177,7 @@ void ChainResolver::order_contacts(StepContext& ctx) {
   }
   for (std::uint32_t i = 2; i < m + 2; ++i)
     adj_start_[i] += adj_start_[i - 1];
-  adj_.resize(adj_start_[m + 1]);
+  resize_buffer(adj_, adj_start_[m + 1]);
   for (const Pair& c : contacts_) {  // adj_start_[i + 1] is the fill cursor of local body i
     if (bodies.immovable(c.b)) continue;
     const std::uint32_t a = local_[c.a], b = local_[c.b];
@@ -200,7 +206,7 @@ void ChainResolver::order_contacts(StepContext& ctx) {
     ++level_count_[bucket(c) + 1];
   for (std::size_t l = 1; l < level_count_.size(); ++l)
     level_count_[l] += level_count_[l - 1];
-  ordered_.resize(contacts_.size());
+  resize_buffer(ordered_, contacts_.size());
   for (const Pair& c : contacts_) {
     Pair o = c;
     if (!bodies.immovable(c.b) && level_[local_[c.b]] < level_[local_[c.a]]) std::swap(o.a, o.b);

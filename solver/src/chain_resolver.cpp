@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "chain_resolver.h"
 
+#include "buffer.h"
+
 #include "entry_face.h"
 
 #include <algorithm>
@@ -15,10 +17,8 @@ void ChainResolver::resolve(StepContext& ctx) {
     // The body set grew: size the per-body buffers for it now, not in some later step.
     const std::size_t n = bodies.size();
     for (auto* v : {&level_, &adj_start_, &queue_, &level_count_})
-      v->reserve(n + 3);
-    contacts_.reserve(2 * n), ordered_.reserve(2 * n), adj_.reserve(4 * n),
-        near_pairs_.reserve(4 * n);
-    found_pairs_.reserve(4 * n);
+      reserve_buffer(*v, n + 3);
+    reserve_buffer(contacts_, 2 * n), reserve_buffer(ordered_, 2 * n), reserve_buffer(adj_, 4 * n);
   }
   state_.begin_step(ctx);
   walls_.begin_step(bodies.size());

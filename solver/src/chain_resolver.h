@@ -102,9 +102,8 @@ class ChainResolver {
   std::vector<std::uint32_t> cands_;
   std::vector<std::uint32_t> found_;  // one suspect body's overlaps
   // With workers: contacts found per block of kBlock bodies, each block's from the start of its
-  // bodies' near lists on.
+  // bodies' near lists on (in near_pairs_).
   static constexpr std::uint32_t kBlock = 2048;
-  std::vector<Pair> found_pairs_;
   std::vector<std::uint32_t> block_found_;
   // The near pairs are scanned again once more than one body in this many was filed again since.
   static constexpr std::uint32_t kRescanShare = 8;

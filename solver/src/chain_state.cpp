@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "chain_state.h"
 
+#include "buffer.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -12,19 +14,19 @@ void ChainState::begin_step(StepContext& ctx) {
   const std::size_t n = ctx.bodies.size();
   if (marks_.size() != n) {
     // The body set changed: size every per-body buffer for it now, not in some later step.
-    marks_.resize(n);
+    resize_buffer(marks_, n);
     forget_slots();
-    near_start_.reserve(n + 2);
-    near_.reserve(8 * n);
-    lower_start_.reserve(n + 1);
-    lower_.reserve(4 * n);
+    // The near lists themselves are sized by the scans that fill them (a row has two neighbours a
+    // body, a pile six or more): a guess here held 48 bytes a body, most of them unused.
+    reserve_buffer(near_start_, n + 2);
+    reserve_buffer(lower_start_, n + 1);
     ctx.crushes.reserve(std::min<std::size_t>(n, 1024));
     refiled_.reserve(64);
   }
   // Each holds a body at most once; checked every step, as a copied world's vectors come without
   // the capacity of the original's.
-  if (reach_order_.capacity() < n) reach_order_.reserve(n);
-  if (suspects_.capacity() < n) suspects_.reserve(n);
+  if (reach_order_.capacity() < n) reserve_buffer(reach_order_, n);
+  if (suspects_.capacity() < n) reserve_buffer(suspects_, n);
   if (++step_ == 0) {  // wrapped: forget every old mark
     for (Marks& m : marks_)
       m.reached = 0;
@@ -51,19 +53,19 @@ void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near
   if (!near_pairs) return;
   const std::uint32_t n = bodies.size();
   if (n > kMaxEntrySlots) throw std::length_error("chain: more bodies than near lists can hold");
-  near_start_.assign(n + 2, 0);
+  assign_buffer(near_start_, n + 2, 0);
   for (const Pair& p : *near_pairs)
     ++near_start_[p.a + 2], ++near_start_[p.b + 2];
   for (std::uint32_t i = 2; i < n + 2; ++i)
     near_start_[i] += near_start_[i - 1];
-  near_.resize(near_start_[n + 1]);
+  resize_buffer(near_, near_start_[n + 1]);
   for (const Pair& p : *near_pairs) {  // near_start_[i + 1] is the fill cursor of body i
     near_[near_start_[p.a + 1]++] = p.b * kEntryScale;
     near_[near_start_[p.b + 1]++] = p.a * kEntryScale;
   }
   // Each body's lower neighbours, in the order of its near list.
-  lower_start_.resize(n + 1);
-  lower_.resize(near_.size() / 2);
+  resize_buffer(lower_start_, n + 1);
+  resize_buffer(lower_, near_.size() / 2);
   std::uint32_t fill = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
     lower_start_[i] = fill;

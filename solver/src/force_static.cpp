@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "force_static.h"
 
+#include "buffer.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -21,7 +23,7 @@ struct WallsOf {
 
 void ForceStatic::run(StepContext& ctx, ChainState& state) {
   const double tol = ctx.def.touch_tolerance;
-  if (against_.size() < ctx.bodies.size()) against_.resize(ctx.bodies.size());
+  if (against_.size() < ctx.bodies.size()) resize_buffer(against_, ctx.bodies.size());
   for (const Item& root : queue_) {
     state.wall(root.body, root.axis);
     against_[root.body] = root.wall;
@@ -182,7 +184,7 @@ bool ForceStatic::yield(StepContext& ctx, ChainState& state, std::uint32_t w, st
 }
 
 void ForceStatic::begin_step(std::size_t bodies) {
-  if (squeezed_.size() != bodies) squeezed_.assign(bodies, 0);
+  if (squeezed_.size() != bodies) assign_buffer(squeezed_, bodies, 0);
   if (++step_ == 0xffffffffu) forget_slots();
   squeezes_ = squeezes_ > 0 ? squeezes_ - 1 : 0;  // counts down from 2: this step and the next
   rows_ = 0;

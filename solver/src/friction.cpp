@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "friction.h"
 
+#include "buffer.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -24,8 +26,8 @@ bool Friction::slides(const Bodies& bodies, const Link& l) {
 
 void Friction::number_bodies(const Bodies& bodies, const std::vector<Link>& links) {
   if (local_.size() != bodies.size()) {
-    local_.assign(bodies.size(), 0);
-    local_mark_.assign(bodies.size(), 0);
+    assign_buffer(local_, bodies.size(), 0);
+    assign_buffer(local_mark_, bodies.size(), 0);
     mark_ = 0;
   }
   if (++mark_ == 0) {
@@ -58,7 +60,7 @@ void Friction::normal_impulses(const Bodies& bodies, const std::vector<Link>& li
   }
   for (std::uint32_t i = 2; i < m + 2; ++i)
     adj_start_[i] += adj_start_[i - 1];
-  adj_.resize(adj_start_[m + 1]);
+  resize_buffer(adj_, adj_start_[m + 1]);
   for (std::uint32_t k = 0; k < n_links; ++k) {  // adj_start_[i + 1] is the fill cursor of i
     const Link& l = links[k];
     if (l.axis != axis) continue;
@@ -99,7 +101,7 @@ void Friction::normal_impulses(const Bodies& bodies, const std::vector<Link>& li
   }
   // Each body's momentum change, plus what it passed on to the bodies it holds up, goes down to
   // its supports (the neighbours of a lower level), farthest bodies first.
-  carried_.resize(m);
+  resize_buffer(carried_, m);
   for (const std::uint32_t u : queue_) {
     const std::uint32_t slot = bodies_[u];
     const double v = axis == 0 ? bodies.vx[slot] : bodies.vy[slot];
@@ -140,8 +142,8 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
       v->reserve(2 * links.capacity());
     for (auto* v : {&bodies_, &level_, &adj_start_, &queue_})
       v->reserve(bodies.size() + 2);
-    carried_.reserve(bodies.size());
-    v_before_.reserve(bodies.size());
+    reserve_buffer(carried_, bodies.size());
+    reserve_buffer(v_before_, bodies.size());
   }
   limit_.assign(n_links, 0.0);
   active_.clear();

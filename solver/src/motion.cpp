@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "motion.h"
 
+#include "buffer.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -96,7 +98,7 @@ template <bool kFindFast, bool kKeepVelocities>
 void Motion::integrate_all(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt,
                            WorkerPool& pool) {
   const std::uint32_t dynamic_end = b.dynamic_end, movable_end = b.movable_end;
-  if (far_.size() < movable_end) far_.resize(movable_end);
+  if (far_.size() < movable_end) resize_buffer(far_, movable_end);
   if (pool.threads() == 1 || movable_end <= kBlock) {
     // One block: the moves are noted once it is done, as with workers. Noted body by body, the
     // broadphase's margin was loaded and stored again for every body (the loop's stores of
@@ -141,8 +143,9 @@ void Motion::integrate_all(Bodies& b, Broadphase& broadphase, Vec2 gravity, doub
 void Motion::integrate(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt, bool find_fast,
                        bool keep_velocities, WorkerPool& pool) {
   fast_count_ = 0;
-  if (fast_.size() < b.movable_end) fast_.resize(b.movable_end);
-  if (keep_velocities && pre_velocity.size() < b.dynamic_end) pre_velocity.resize(b.dynamic_end);
+  if (fast_.size() < b.movable_end) resize_buffer(fast_, b.movable_end);
+  if (keep_velocities && pre_velocity.size() < b.dynamic_end)
+    resize_buffer(pre_velocity, b.dynamic_end);
   if (find_fast) {
     if (keep_velocities) {
       integrate_all<true, true>(b, broadphase, gravity, dt, pool);

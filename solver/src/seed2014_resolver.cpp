@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: MIT
 #include "seed2014_resolver.h"
 
+#include "buffer.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace chain::detail {
 
 void Seed2014Resolver::resolve(StepContext& ctx, const std::vector<std::uint32_t>& creation_order) {
-  crushed_.assign(ctx.bodies.size(), 0);
+  assign_buffer(crushed_, ctx.bodies.size(), 0);
   // QUIRK: one grid per step, from the positions before any push (LGSpatialGrid, 1a6b023).
   ctx.broadphase.build(ctx.bodies);
   ctx.stats.passes = 1;

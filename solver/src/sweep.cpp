@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "sweep.h"
 
+#include "buffer.h"
+
 #include "entry_face.h"
 
 #include <algorithm>
@@ -98,7 +100,7 @@ bool Sweep::run(StepContext& ctx, ChainState& state) {
   // bodies again where they went (and any other body that moved far), so queries find them.
   const bool build = !ctx.broadphase.built();
   if (build) ctx.broadphase.build(bodies);
-  if (fast_.size() != bodies.size()) fast_.assign(bodies.size(), 0);
+  if (fast_.size() != bodies.size()) assign_buffer(fast_, bodies.size(), 0);
   for (const std::uint32_t i : fast)
     fast_[i] = 1;
   // How far any body that is not fast moved: a body whose swept box meets a fast body's swept box

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "velocity_response.h"
 
+#include "buffer.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -26,9 +28,9 @@ void VelocityResponse::apply_axis(Bodies& bodies, int axis, double restitution_t
   if (per_axis_[axis] == 0) return;
   const std::uint32_t n = bodies.dynamic_end;
   for (auto* a : {&g.parent_, &g.root_, &g.anchor_count_})
-    a->resize(n);
+    resize_buffer(*a, n);
   for (auto* a : {&g.mass_, &g.momentum_, &g.anchor_sum_, &g.restitution_, &g.spread_})
-    a->resize(n);
+    resize_buffer(*a, n);
   // Through local pointers: the loops below store into several of these arrays, and through the
   // vectors every store would have the others' data pointers reloaded.
   double* const v = axis == 0 ? bodies.vx.data() : bodies.vy.data();

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "bodies.h"
+#include "buffer.h"
 #include "worker_pool.h"
 
 #include <cstdint>
@@ -25,7 +26,7 @@ class VelocityResponse {
   }
   // Sizes the link list for a body set of n, as the resolver sizes its contact lists: a step then
   // records two pushes a body without allocating.
-  void reserve(std::size_t n) { links_.reserve(2 * n); }
+  void reserve(std::size_t n) { reserve_buffer(links_, 2 * n); }
   // `a` was pushed out of `b` along axis (0 = x, 1 = y) in direction sign.
   void add(std::uint32_t a, std::uint32_t b, int axis, double sign) {
     links_.push_back(

@@ -180,7 +180,7 @@ struct World::Impl {
       }
     }
     list_creation_order();
-    broadphase.renumber(order);
+    broadphase.renumber(order, layout.spare());
     modern.forget_slots();
   }
 };

@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: MIT
-// Once warmed up, a step allocates nothing: every buffer keeps its capacity from step to step.
-// This executable replaces the global operator new to count allocations while a flag is set.
+// Once warmed up, a step allocates nothing: every buffer keeps its capacity from step to step; and
+// a world holds no more than its budget of bytes a body. This executable replaces the global
+// operator new to count allocations while a flag is set, and the bytes held at any time.
 #include "world_helpers.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cstddef>
 #include <cstdlib>
+#include <functional>
 #include <new>
 #include <vector>
 
@@ -17,28 +20,41 @@
 namespace {
 std::atomic<bool> g_counting{false};
 std::atomic<long> g_allocations{0};
+// Bytes asked for and not yet released, by every operator new of the program: each block carries
+// its size in a header as wide as malloc's alignment, so that the count is the program's requests,
+// whatever the allocator rounds them to.
+std::atomic<long long> g_held{0};
+constexpr std::size_t kHeader = alignof(std::max_align_t);
 }  // namespace
 
 void* operator new(std::size_t n) {
   if (g_counting.load(std::memory_order_relaxed))
     g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
+  if (auto* p = static_cast<unsigned char*>(std::malloc(n + kHeader))) {
+    *reinterpret_cast<std::size_t*>(p) = n;
+    g_held.fetch_add(static_cast<long long>(n), std::memory_order_relaxed);
+    return p + kHeader;
+  }
   throw std::bad_alloc();
 }
 void* operator new[](std::size_t n) {
   return operator new(n);
 }
 void operator delete(void* p) noexcept {
-  std::free(p);
+  if (!p) return;
+  auto* block = static_cast<unsigned char*>(p) - kHeader;
+  g_held.fetch_sub(static_cast<long long>(*reinterpret_cast<std::size_t*>(block)),
+                   std::memory_order_relaxed);
+  std::free(block);
 }
 void operator delete[](void* p) noexcept {
-  std::free(p);
+  operator delete(p);
 }
 void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
+  operator delete(p);
 }
 void operator delete[](void* p, std::size_t) noexcept {
-  std::free(p);
+  operator delete(p);
 }
 
 namespace chain::testing {
@@ -182,6 +198,98 @@ TEST(Allocation, RenumberingTheBodiesAllocatesNothing) {
   g_counting = false;
   EXPECT_EQ(g_allocations, 0);
   EXPECT_GT(renumberings, 2);
+}
+
+// Bytes a world holds a body, after it has stepped (every buffer at its working size): issue 20's
+// budget is 800. Four layouts of about 10,000 bodies, the sizes at which the per-body arrays'
+// growth showed most (doubled vectors held up to twice what they needed): a pyramid, a wall of
+// columns, a row pushed top-down, a pile of mixed sizes; each stepped with and without skip_rest,
+// and a world with one body created and one destroyed every step.
+TEST(Memory, AWorldHoldsAtMost800BytesABody) {
+  constexpr double kBudget = 800.0;
+  struct Layout {
+    const char* name;
+    Vec2 gravity;
+    std::function<int(World&)> build;  // returns the bodies it made
+  };
+  const std::vector<Layout> layouts = {
+      {"pyramid",
+       {0.0, -10.0},
+       [](World& w) {
+         add_floor(w, 200.0);
+         int n = 1;
+         for (int row = 0; row < 140; ++row) {
+           for (int k = 0; k < 140 - row; ++k, ++n)
+             w.create_body(dynamic_box(k - 0.5 * (139 - row), 0.5 + row));
+         }
+         return n;
+       }},
+      {"wall",
+       {0.0, -10.0},
+       [](World& w) {
+         add_floor(w, 600.0);
+         for (int c = 0; c < 1000; ++c) {
+           for (int k = 0; k < 10; ++k)
+             w.create_body(dynamic_box(1.0 * c - 500.0, 0.5 + k));
+         }
+         return 10'001;
+       }},
+      {"pushed row",
+       {0.0, 0.0},
+       [](World& w) {
+         const BodyId pusher = w.create_body(dynamic_box(0.0, 0.0));
+         w.set_drive(pusher, {2.0, 0.0});
+         for (int i = 1; i <= 10'000; ++i)
+           w.create_body(dynamic_box(i, 0.0));
+         return 10'001;
+       }},
+      {"mixed pile",
+       {0.0, -10.0},
+       [](World& w) {
+         add_floor(w, 200.0);
+         for (int i = 0; i < 10'000; ++i) {
+           const double half = 0.2 + 0.05 * (i * 7 % 9);
+           w.create_body(dynamic_box(1.2 * (i % 100) - 60.0, 1.2 * (i / 100) + half, half));
+         }
+         return 10'001;
+       }},
+  };
+  for (const Layout& layout : layouts) {
+    for (const bool skip_rest : {true, false}) {
+      WorldDef def = world_def(Variant::kModern, VelocityRule::kInelastic, layout.gravity);
+      def.skip_rest = skip_rest;
+      const long long before = g_held.load();
+      {
+        World w(def);
+        const int bodies = layout.build(w);
+        for (int s = 0; s < 45; ++s)
+          w.step(1.0 / 60.0);
+        const double per_body = static_cast<double>(g_held.load() - before) / bodies;
+        EXPECT_LE(per_body, kBudget) << layout.name << (skip_rest ? "" : ", skip_rest off");
+        // The count is real: the bodies' own arrays alone hold more than 100 bytes a body.
+        EXPECT_GT(per_body, 100.0) << layout.name;
+      }
+      EXPECT_EQ(g_held.load(), before) << layout.name << ": the world gave back what it held";
+    }
+  }
+  // Churn: a wall of 10,000 boxes, and one box created and one destroyed every step.
+  const long long before = g_held.load();
+  World w(world_def(Variant::kModern, VelocityRule::kInelastic));
+  add_floor(w, 600.0);
+  for (int c = 0; c < 1000; ++c) {
+    for (int k = 0; k < 10; ++k)
+      w.create_body(dynamic_box(1.0 * c - 500.0, 0.5 + k));
+  }
+  std::vector<BodyId> dropped;
+  for (int s = 0; s < 120; ++s) {
+    dropped.push_back(w.create_body(dynamic_box(-550.0, 20.0 + s)));
+    if (dropped.size() > 10) {
+      w.destroy_body(dropped.front());
+      dropped.erase(dropped.begin());
+    }
+    w.step(1.0 / 60.0);
+  }
+  EXPECT_LE(static_cast<double>(g_held.load() - before) / 10'011.0, kBudget) << "churn";
 }
 
 }  // namespace

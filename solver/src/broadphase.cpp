@@ -36,6 +36,7 @@ void Broadphase::configure(const Bodies& bodies) {
   // Exact sizes: configure() runs when the body set changes, and costs O(n) then anyway.
   ref_.reserve(n);
   ref_.resize(n);
+  stretch_.assign(n, Stretch{0.0f, 0.0f});
   in_overlay_.assign(n, 0);
   overlay_cx_.assign(n, 0);
   overlay_cy_.assign(n, 0);
@@ -103,6 +104,7 @@ void Broadphase::renumber(std::span<const std::uint32_t> order, Bodies::Spare& s
   // slot. The overlay is emptied; the next build() files everything anew.
   clear_overlay();
   spare.gather(ref_, order);
+  spare.gather(stretch_, order);
   // Slot order within each level, as configure() leaves it; the lists keep their capacity.
   for (Level& level : levels_)
     level.bodies.clear();
@@ -114,15 +116,35 @@ void Broadphase::renumber(std::span<const std::uint32_t> order, Bodies::Spare& s
   }
 }
 
-void Broadphase::build(const Bodies& bodies) {
+void Broadphase::build(const Bodies& bodies, double dt, Vec2 gravity) {
   built_generation_ = generation_;
   margin_ = 0.0;
   clear_overlay();
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
     ref_[i] = {bodies.x(i), bodies.y(i)};
+    stretch_[i] = {0.0f, 0.0f};
+  }
+  if (dt > 0.0) {
+    // The way a body goes in kAheadSteps steps at its velocity before this step's gravity (a
+    // body at rest on the ground has gravity's share of a step, which its support takes away).
+    const double ahead = kAheadSteps * dt, least = 2.0 * refile_;
+    for (std::uint32_t i = 0; i < bodies.movable_end; ++i) {
+      const double g = i < bodies.dynamic_end ? bodies.gravity_scale[i] * dt : 0.0;
+      const double way[2] = {(bodies.vx[i] - gravity.x * g) * ahead,
+                             (bodies.vy[i] - gravity.y * g) * ahead};
+      const double most = levels_[level_of_[i]].small_half;
+      double* const centre = &ref_[i].x;
+      float* const by = &stretch_[i].x;
+      for (int axis = 0; axis < 2; ++axis) {
+        if (!(std::abs(way[axis]) > least)) continue;  // NaN (an emptied slot) included
+        const auto half = static_cast<float>(std::min(0.5 * std::abs(way[axis]), most));
+        centre[axis] += way[axis] > 0.0 ? half : -half;
+        by[axis] = half;
+      }
+    }
   }
   for (Level& level : levels_)
-    level.build(bodies, entry_of_);
+    level.build(bodies, ref_, stretch_, entry_of_);
 }
 
 void Broadphase::insert(const Bodies& bodies, std::uint32_t body) {
@@ -233,17 +255,21 @@ void Broadphase::refile(std::uint32_t body, double x, double y) {
   if (head != kNoSlot) prev_[head] = body;
   head = body;
   ref_[body] = {x, y};
+  stretch_[body] = {0.0f, 0.0f};
   if (built()) unmarked_.push_back({body, x, y});
 }
 
-void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry_of) {
+void Broadphase::Level::build(const Bodies& b, std::span<const Point> at,
+                              std::span<const Stretch> by, std::vector<std::uint32_t>& entry_of) {
   double min_x = std::numeric_limits<double>::max(), min_y = min_x;
   double max_x = std::numeric_limits<double>::lowest(), max_y = max_x;
+  stretch = 0.0;
   for (const std::uint32_t i : bodies) {
-    min_x = std::min(min_x, b.x(i));
-    max_x = std::max(max_x, b.x(i));
-    min_y = std::min(min_y, b.y(i));
-    max_y = std::max(max_y, b.y(i));
+    min_x = std::min(min_x, at[i].x);
+    max_x = std::max(max_x, at[i].x);
+    min_y = std::min(min_y, at[i].y);
+    max_y = std::max(max_y, at[i].y);
+    stretch = std::max(stretch, static_cast<double>(std::max(by[i].x, by[i].y)));
   }
   // A level every body of which has left (emptied slots, NaN centres, skip the min/max; bodies
   // refiled to other levels) has no bounds: one cell at the origin, as a level's grid needs one.
@@ -263,7 +289,7 @@ void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry
   std::fill(cell_start.begin(), cell_start.end(), 0u);
   for (std::size_t k = 0; k < bodies.size(); ++k) {
     const std::uint32_t i = bodies[k];
-    keys[k] = bucket(cell_x(b.x(i)), cell_y(b.y(i)));
+    keys[k] = bucket(cell_x(at[i].x), cell_y(at[i].y));
     ++cell_start[keys[k] + 1];
   }
   for (std::size_t k = 1; k < cell_start.size(); ++k)
@@ -273,10 +299,9 @@ void Broadphase::Level::build(const Bodies& b, std::vector<std::uint32_t>& entry
     // The cells again (a few operations) rather than kept from the pass above: 8 bytes a body.
     const std::uint32_t i = bodies[k];
     entry_of[i] = cursor[keys[k]]++;
-    entries[entry_of[i]] = Entry{
-        i,      cell_x(b.x(i)), cell_y(b.y(i)), static_cast<std::uint8_t>(b.immovable(i) ? 1 : 0),
-        0,      b.x(i),         b.y(i),         b.hx(i),
-        b.hy(i)};
+    const std::uint8_t immovable = b.immovable(i) ? 1 : 0;
+    entries[entry_of[i]] = Entry{i,       cell_x(at[i].x), cell_y(at[i].y),   immovable,        0,
+                                 at[i].x, at[i].y,         b.hx(i) + by[i].x, b.hy(i) + by[i].y};
   }
 }
 

@@ -20,6 +20,14 @@
 // no longer makes every later query scan a region as wide as that push (work per query stays
 // bounded by the bodies around the query, not by the largest move of the step). Integration
 // notes its moves too, so telling whether the near pairs still hold needs no pass over the bodies.
+//
+// A body moving steadily (a pushed row, a train, a blade, a falling box) would be filed again
+// every step or two, and once an eighth of the bodies were, every near pair was scanned again. So
+// build() files a body that moves at its box stretched along the way its velocity takes it over
+// the next kAheadSteps steps (Box2D's fat boxes, enlarged by the predicted displacement, play that
+// part): the body stays where it is filed while its box is within that stretched box grown by
+// refile_distance(), and the near pairs are those of the stretched boxes. A body at rest, or
+// slower than takes it 2 refile distances in that time, is filed at its box, as before.
 #pragma once
 
 #include "bodies.h"
@@ -40,8 +48,12 @@ class Broadphase {
   // `spare` (the buffer Bodies::permute used). Like configure(), it changes generation(), and the
   // next query needs build().
   void renumber(std::span<const std::uint32_t> order, Bodies::Spare& spare);
-  // Buckets every body at its current position.
-  void build(const Bodies& bodies);
+  // Buckets every body at its current position. With dt > 0 (s), a movable body whose velocity at
+  // the step's start (its velocity less this step's gravity) takes it more than 2
+  // refile_distance() along an axis in kAheadSteps steps of dt is filed at its box stretched
+  // over that way, by at most its level's largest half extent.
+  void build(const Bodies& bodies, double dt = 0.0, Vec2 gravity = {0.0, 0.0});
+  static constexpr double kAheadSteps = 8.0;
   // Whether a body of this largest half extent fits a level (no larger than the largest body of
   // some level), so that insert() can take it without configure().
   bool fits(double largest_half) const {
@@ -64,8 +76,7 @@ class Broadphase {
   // Every move of a body after build() must be noted, integration included. A body further than
   // refile_distance() from where it was last filed is filed again where it is now.
   void note_move(std::uint32_t body, double x, double y) {
-    const Point& r = ref_[body];
-    const double d = std::max(std::abs(x - r.x), std::abs(y - r.y));
+    const double d = distance(body, x, y);
     margin_ = std::max(margin_, std::min(d, refile_));
     if (d > refile_) [[unlikely]]
       refile(body, x, y);
@@ -73,13 +84,20 @@ class Broadphase {
   // note_move() for bodies moved at once in blocks: distance() reads, and once the blocks are
   // done, note_moves() takes the largest distance of them all and the bodies further than
   // refile_distance(), in slot order. The same as note_move() for each body in slot order.
+  // How far the body's box at (x, y) reaches out of the box it is filed at, on either axis.
   double distance(std::uint32_t body, double x, double y) const {
     const Point& r = ref_[body];
-    return std::max(std::abs(x - r.x), std::abs(y - r.y));
+    const Stretch& e = stretch_[body];
+    return std::max(std::abs(x - r.x) - e.x, std::abs(y - r.y) - e.y);
   }
-  // Where each body was last filed, for loops that compute distance() themselves (as the same
-  // operations on both axes at once).
+  // Where each body was last filed (the centre of its filed box) and by how much that box is
+  // larger than the body's on each axis, for loops that compute distance() themselves (as the
+  // same operations on both axes at once).
   const Point* filed_at() const { return ref_.data(); }
+  struct Stretch {  // in floats: 8 bytes a body, and the filed box is made with the same values
+    float x, y;
+  };
+  const Stretch* stretched_by() const { return stretch_.data(); }
   void note_moves(const Bodies& bodies, double largest, std::span<const std::uint32_t> far) {
     margin_ = std::max(margin_, std::min(largest, refile_));
     for (const std::uint32_t i : far)
@@ -167,6 +185,7 @@ class Broadphase {
   struct Level {
     double cell = 1.0, inv_cell = 1.0;
     double small_half = 0.0;  // largest half extent in the level
+    double stretch = 0.0;     // largest stretch_ of its bodies at build(): 0 or at most small_half
     double origin_x = 0.0, origin_y = 0.0;
     std::uint32_t width = 1, height = 1, mask = 63;
     bool dense = true;                  // every cell has a bucket of its own
@@ -196,12 +215,14 @@ class Broadphase {
     std::uint32_t bucket(std::int32_t cx, std::int32_t cy) const {
       return (static_cast<std::uint32_t>(cy) * width + static_cast<std::uint32_t>(cx)) & mask;
     }
-    // The cells whose bodies may reach the box (x +- hx, y +- hy) grown by pad.
+    // The cells whose bodies' filed boxes may reach the box (x +- hx, y +- hy) grown by pad.
     CellRange cells_near(double x, double y, double hx, double hy, double pad) const {
-      const double rx = hx + small_half + pad, ry = hy + small_half + pad;
+      const double rx = hx + small_half + stretch + pad, ry = hy + small_half + stretch + pad;
       return {cell_x(x - rx), cell_y(y - ry), cell_x(x + rx), cell_y(y + ry)};
     }
-    void build(const Bodies& bodies, std::vector<std::uint32_t>& entry_of);
+    // Entries for the filed boxes: centres `at`, half extents the bodies' grown by `by`.
+    void build(const Bodies& bodies, std::span<const Point> at, std::span<const Stretch> by,
+               std::vector<std::uint32_t>& entry_of);
     template <class Fn>
     void scan(CellRange r, std::uint64_t& examined, Fn&& fn) const;
   };
@@ -250,8 +271,10 @@ class Broadphase {
   std::vector<std::uint8_t> level_of_;   // per slot
   std::vector<std::uint32_t> entry_of_;  // per slot: index in its level's entries
   // Per slot, where the body was last filed (by build() or in the overlay): x and y together, as
-  // every note_move() reads both.
+  // every note_move() reads both; the centre of its filed box, stretched along its way by
+  // stretch_ a side on each axis (0 in the overlay and for a body filed at its box).
   std::vector<Point> ref_;
+  std::vector<Stretch> stretch_;
   // The overlay, per slot: in it or not, its cell there, its bucket list's links, and the scan
   // after which it was last filed (stale when later than scan_).
   std::vector<std::uint8_t> in_overlay_;
@@ -271,7 +294,7 @@ class Broadphase {
   std::uint32_t scan_ = 0;               // near-pair scans so far, modulo next_scan()
   std::uint32_t stale_ = 0;              // bodies filed again since the last scan
   Point stale_lo_{}, stale_hi_{};        // around their boxes where they were filed since
-  double margin_ = 0.0;                  // largest displacement from where a body is filed
+  double margin_ = 0.0;                  // largest distance() of a body not filed again
   double slack_ = 0.0;
   double refile_ = 0.0;
   std::uint64_t generation_ = 0;
@@ -390,11 +413,14 @@ void Broadphase::for_each_near_pair(const Bodies& bodies, Fn&& fn) {
     const auto last_x = static_cast<std::int32_t>(level.width - 1);
     const auto last_y = static_cast<std::int32_t>(level.height - 1);
     // Within the level, half the neighbourhood: the own row (each pair once, by slot) and the
-    // row above; the row below finds e when it is that row's turn.
+    // rows above; the rows below find e when it is their turn. Boxes no larger than the level's
+    // largest that are slack apart have centres at most a cell apart, so in the next cells;
+    // stretched by at most that largest half extent, at most 2 cells apart.
+    const std::int32_t k = level.stretch > 0.0 ? 2 : 1;
     for (const Entry& e : level.entries) {
       if (e.out) continue;
-      const CellRange r{std::max(e.cx - 1, 0), e.cy, std::min(e.cx + 1, last_x),
-                        std::min(e.cy + 1, last_y)};
+      const CellRange r{std::max(e.cx - k, 0), e.cy, std::min(e.cx + k, last_x),
+                        std::min(e.cy + k, last_y)};
       level.scan(r, examined_, [&](const Entry& f) {
         if (f.cy != e.cy || f.body > e.body) test(e, f);
       });

@@ -33,13 +33,14 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
       bp.stale_count() <= bodies.size() / kRescanShare) {
     state_.begin_sweep(bodies, nullptr);
   } else {
-    if (!fresh_grid_) ctx.broadphase.build(bodies);
+    if (!fresh_grid_) ctx.broadphase.build(bodies, ctx.dt, ctx.def.gravity);
     fresh_grid_ = false;
     near_generation_ = bp.generation();
-    // As many as the last scan found and a quarter more, before the scan pushes them one by one.
+    // As many as the last scan found and a quarter more, before the scan pushes them one by one
+    // (growing as every buffer grows: a scan that finds one pair more does not allocate again).
     const std::size_t last = near_pairs_.size();
     near_pairs_.clear();
-    if (near_pairs_.capacity() < last + last / 4) near_pairs_.reserve(last + last / 4);
+    reserve_buffer(near_pairs_, last + last / 4);
     ctx.broadphase.for_each_near_pair(bodies, [&](std::uint32_t i, std::uint32_t j) {
       near_pairs_.push_back({i, j});
     });

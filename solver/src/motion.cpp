@@ -39,6 +39,7 @@ void Motion::integrate_range(Bodies& b, Broadphase& broadphase, Vec2 gravity, do
   const __m128d step = _mm_set1_pd(dt);
   const __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffff));
   const Point* const filed_at = broadphase.filed_at();
+  const Broadphase::Stretch* const stretched_by = broadphase.stretched_by();
 #endif
   for (std::uint32_t i = begin; i < end; ++i) {
     double vx = vel_x[i], vy = vel_y[i];
@@ -64,7 +65,10 @@ void Motion::integrate_range(Bodies& b, Broadphase& broadphase, Vec2 gravity, do
     _mm_storeu_pd(&start[i].x, c0);
     // Broadphase::distance(): std::max(dx, dy), which is dx < dy ? dy : dx; maxsd(dy, dx) is
     // dy > dx ? dy : dx, the same value for every pair of operands, NaN included.
-    const __m128d filed = _mm_and_pd(_mm_sub_pd(c1, _mm_loadu_pd(&filed_at[i].x)), magnitude);
+    const __m128d filed = _mm_sub_pd(
+        _mm_and_pd(_mm_sub_pd(c1, _mm_loadu_pd(&filed_at[i].x)), magnitude),
+        _mm_cvtps_pd(
+            _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&stretched_by[i].x)))));
     const double d = _mm_cvtsd_f64(_mm_max_sd(_mm_unpackhi_pd(filed, filed), filed));
     largest = std::max(largest, d);
     if (d > refile) [[unlikely]]

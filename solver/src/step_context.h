@@ -50,6 +50,7 @@ struct StepContext {
   WorkerPool& pool;   // for the parts of the step that split into independent blocks
   StageClock& clock;  // laps the resolver's stages into `profile` when profiling
   StepProfile& profile;
+  double dt;  // the step's, s
 
   double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
 

@@ -99,7 +99,7 @@ bool Sweep::run(StepContext& ctx, ChainState& state) {
   // The grid of earlier steps serves while the body set is the same: integration filed the fast
   // bodies again where they went (and any other body that moved far), so queries find them.
   const bool build = !ctx.broadphase.built();
-  if (build) ctx.broadphase.build(bodies);
+  if (build) ctx.broadphase.build(bodies, ctx.dt, ctx.def.gravity);
   if (fast_.size() != bodies.size()) assign_buffer(fast_, bodies.size(), 0);
   for (const std::uint32_t i : fast)
     fast_[i] = 1;

@@ -143,12 +143,20 @@ void World::step(double dt) {
   clock.lap(w.profile.integrate);
 
   const std::uint64_t budget = static_cast<std::uint64_t>(w.def.budget_per_body) * w.live() + 1024u;
-  detail::StepContext ctx{
-      w.bodies, w.broadphase, w.response,
-      w.def,    w.stats,      w.crush_records,
-      budget,   w.motion,     w.def.velocity_rule == VelocityRule::kInelastic || rough,
-      modern,   w.pool,       clock,
-      w.profile};
+  detail::StepContext ctx{w.bodies,
+                          w.broadphase,
+                          w.response,
+                          w.def,
+                          w.stats,
+                          w.crush_records,
+                          budget,
+                          w.motion,
+                          w.def.velocity_rule == VelocityRule::kInelastic || rough,
+                          modern,
+                          w.pool,
+                          clock,
+                          w.profile,
+                          dt};
   if (modern) {
     w.modern.resolve(ctx);  // laps sweep, contacts and chains itself
   } else {

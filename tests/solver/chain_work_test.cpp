@@ -220,6 +220,32 @@ TEST(ChainWork, OneFastBodyDoesNotDoubleAStepsSearchWork) {
   EXPECT_LT((with_fast - resting) / kSteps, 0.25 * scan) << "resting " << resting;
 }
 
+// A flock going steadily (a train, a pushed row, a blade's crates) moved every body further than
+// the broadphase's refile distance every step, so every step filed them all again and scanned
+// every near pair anew. Filed at their boxes stretched along their way (Broadphase::build), they
+// stay where they are filed for Broadphase::kAheadSteps steps: a step that scans the near pairs
+// (and so examines at least one candidate per body) comes once in that many, not every step.
+TEST(ChainWork, AFlockGoingSteadilyIsNotScannedAgainEveryStep) {
+  constexpr int kSteps = 64, kSide = 20;
+  WorldDef def = world_def(Variant::kModern, VelocityRule::kInelastic, {0.0, 0.0});
+  World w(def);
+  for (int i = 0; i < kSide; ++i) {
+    for (int j = 0; j < kSide; ++j) {
+      BodyDef d = dynamic_box(2.0 * i, 2.0 * j);
+      d.velocity = {4.0, -1.0};  // 67 mm a step: twice the 31 mm refile distance of 1 m boxes
+      w.create_body(d);
+    }
+  }
+  int scans = 0;
+  for (int step = 0; step < kSteps; ++step) {
+    w.step(kDt);
+    ASSERT_EQ(w.last_step_stats().fast_bodies, 0u);  // no sweep: its queries would count too
+    scans += w.last_step_stats().candidates >= kSide * kSide;
+  }
+  EXPECT_GE(scans, 1);
+  EXPECT_LE(scans, kSteps / 4);
+}
+
 // Five 1 m boxes between walls 4 m apart cannot all fit: every step ends, reports the squeeze,
 // and keeps every box between the walls.
 TEST(ChainWork, RowWiderThanItsGapIsCrushedNotLooped) {

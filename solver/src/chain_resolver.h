@@ -109,6 +109,9 @@ class ChainResolver {
   static constexpr std::uint32_t kRescanShare = 8;
   Frame last_{};                       // the result of the last frame that finished without opening
   std::uint64_t near_generation_ = 0;  // broadphase generation the near pairs were scanned in
+  // The broadphase's examined() when the near pairs were last scanned, and what the scan and its
+  // build examined (bodies filed count one each).
+  std::uint64_t examined_after_scan_ = 0, scan_cost_ = 0;
 };
 
 }  // namespace chain::detail

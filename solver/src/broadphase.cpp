@@ -137,7 +137,12 @@ void Broadphase::build(const Bodies& bodies, double dt, Vec2 gravity) {
       float* const by = &stretch_[i].x;
       for (int axis = 0; axis < 2; ++axis) {
         if (!(std::abs(way[axis]) > least)) continue;  // NaN (an emptied slot) included
-        const auto half = static_cast<float>(std::min(0.5 * std::abs(way[axis]), most));
+        // Rounded down to a float: the near-pair scan's two cells need the stretch no larger than
+        // `most`, by less than the slack, which is as small as a quarter of the finest level's
+        // largest half extent (a float of `most` rounded up could pass it by most * 2^-24).
+        const double want = std::min(0.5 * std::abs(way[axis]), most);
+        auto half = static_cast<float>(want);
+        if (static_cast<double>(half) > want) half = std::nextafter(half, 0.0f);
         centre[axis] += way[axis] > 0.0 ? half : -half;
         by[axis] = half;
       }

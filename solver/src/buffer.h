@@ -12,24 +12,24 @@
 
 namespace chain::detail {
 
-// v.resize(n), with any new capacity at least a quarter more than the old.
+// v.resize(n), with any new capacity at least a quarter (and 8 elements) more than the old.
 template <class T>
 void resize_buffer(std::vector<T>& v, std::size_t n) {
-  if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 4));
+  if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 4 + 8));
   v.resize(n);
 }
 
 // v.assign(n, value), growing as resize_buffer().
 template <class T>
 void assign_buffer(std::vector<T>& v, std::size_t n, const std::type_identity_t<T>& value) {
-  if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 4));
+  if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 4 + 8));
   v.assign(n, value);
 }
 
 // v.reserve(n), growing as resize_buffer().
 template <class T>
 void reserve_buffer(std::vector<T>& v, std::size_t n) {
-  if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 4));
+  if (n > v.capacity()) v.reserve(std::max(n, v.capacity() + v.capacity() / 4 + 8));
 }
 
 // Room for one more element (a push_back that allocates nothing), growing as resize_buffer().

@@ -23,18 +23,19 @@ constexpr std::uint32_t kUnreached = 0xffffffffu;
 // quarter of the slack) of where the scan saw them is among them; a body that moved further (a
 // fast body, a far push) was filed again and is looked up in the broadphase itself. So the near
 // pairs serve from step to step, however far a few bodies went, and are scanned again only when
-// the grid changes, a good share of the bodies were filed again, or the broadphase has examined as
-// many candidates for the bodies filed again since the scan as the scan (and the build before it)
+// the grid changes, a good share of the bodies were filed again, or some body was and the
+// broadphase has examined as many candidates since the scan as the scan (and the build before it)
 // cost: then a new scan, after which none is stale, pays for itself (the rent-or-buy rule, at most
-// twice the work of the best choice made knowing the future). A resting pile with one fast body in
-// it neither rebuilds its grid nor rescans its pairs.
+// twice the work of the best choice made knowing the future; the count takes every query, the
+// sweep's too, which a scan does not save: an upper bound on what the stale bodies cost). A
+// resting pile with one fast body in it neither rebuilds its grid nor rescans its pairs.
 void ChainResolver::gather_contacts(StepContext& ctx) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
   const Broadphase& bp = ctx.broadphase;
   if (!fresh_grid_ && near_generation_ == bp.generation() &&
       bp.stale_count() <= bodies.size() / kRescanShare &&
-      bp.examined() - examined_after_scan_ <= scan_cost_) {
+      (bp.stale_count() == 0 || bp.examined() - examined_after_scan_ <= scan_cost_)) {
     state_.begin_sweep(bodies, nullptr);
   } else {
     const std::uint64_t before = bp.examined();

@@ -67,8 +67,9 @@ void Motion::integrate_range(Bodies& b, Broadphase& broadphase, Vec2 gravity, do
     // dy > dx ? dy : dx, the same value for every pair of operands, NaN included.
     const __m128d filed = _mm_sub_pd(
         _mm_and_pd(_mm_sub_pd(c1, _mm_loadu_pd(&filed_at[i].x)), magnitude),
+        // The two floats through an integer load, which may alias them.
         _mm_cvtps_pd(
-            _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&stretched_by[i].x)))));
+            _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&stretched_by[i])))));
     const double d = _mm_cvtsd_f64(_mm_max_sd(_mm_unpackhi_pd(filed, filed), filed));
     largest = std::max(largest, d);
     if (d > refile) [[unlikely]]

@@ -30,15 +30,16 @@ INSTANTIATE_TEST_SUITE_P(Solver, BroadphaseStretch, ::testing::ValuesIn(kMixes),
 
 // Every movable body a velocity before this step's gravity (`way`, m/s), each axis on its own: a
 // third at rest, the others taking it from 2 refile distances to `top` (m) in kAheadSteps steps,
-// either way. The bodies' velocities are set as integration leaves them: with this step's gravity
-// on the dynamic ones.
-std::vector<Point> give_velocities(Bodies& b, double refile, double top, std::mt19937& rng) {
+// either way; without `across`, along y only (rain, a lift). The bodies' velocities are set as
+// integration leaves them: with this step's gravity on the dynamic ones.
+std::vector<Point> give_velocities(Bodies& b, double refile, double top, std::mt19937& rng,
+                                   bool across = true) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double ahead = Broadphase::kAheadSteps * kDt;
   std::vector<Point> way(b.size(), Point{0.0, 0.0});
   for (std::uint32_t i = 0; i < b.movable_end; ++i) {
     double* const go = &way[i].x;
-    for (int axis = 0; axis < 2; ++axis) {
+    for (int axis = across ? 0 : 1; axis < 2; ++axis) {
       if (unit(rng) < 1.0 / 3.0) continue;
       const double far = 2.0 * refile * (1.0 + 1e-6) + unit(rng) * (top - 2.0 * refile);
       go[axis] = (unit(rng) < 0.5 ? -far : far) / ahead;
@@ -53,8 +54,16 @@ std::vector<Point> give_velocities(Bodies& b, double refile, double top, std::mt
 // eighth of the refile distance, and one body in 40 thrown far each step: after every step the
 // near pairs hold every overlapping pair of bodies not filed again, bodies no refiled body came
 // near find all their overlaps in their near lists, and every query finds exactly the overlaps.
+void check_going_their_way(const Mix& m, bool across);
+
 TEST_P(BroadphaseStretch, NearPairsAndQueriesHoldWhileBodiesGoTheirWay) {
-  const Mix m = GetParam();
+  for (const bool across : {true, false}) {
+    SCOPED_TRACE(across ? "along both axes" : "along y only");
+    check_going_their_way(GetParam(), across);
+  }
+}
+
+void check_going_their_way(const Mix& m, bool across) {
   std::mt19937 rng(41);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   Bodies b = random_bodies(17, m.n, m.spread, m.min_half, m.max_half);
@@ -62,7 +71,7 @@ TEST_P(BroadphaseStretch, NearPairsAndQueriesHoldWhileBodiesGoTheirWay) {
   bp.configure(b);
   const double r = bp.refile_distance();
   // Some ways longer than twice the largest body: stretches cut at their level's largest.
-  const std::vector<Point> way = give_velocities(b, r, 4.0 * m.max_half, rng);
+  const std::vector<Point> way = give_velocities(b, r, 4.0 * m.max_half, rng, across);
   bp.build(b, kDt, kGravity);
   const std::vector<std::vector<std::uint32_t>> near = near_lists(bp, b);
   const std::vector<std::set<std::uint32_t>> near_sets = [&] {
@@ -161,6 +170,50 @@ TEST_P(BroadphaseStretch, WithoutAStepEveryBodyIsFiledAtItsBox) {
   Pairs near;
   bp.for_each_near_pair(b, [&](std::uint32_t i, std::uint32_t j) { near.insert({i, j}); });
   EXPECT_EQ(near, brute_force(b, -bp.slack()));
+}
+
+// A stretch cut at its level's largest half extent is no larger than that, to the bit: the
+// near-pair scan looks two cells around an entry, which holds every pair only while the stretch
+// passes that half extent by less than the slack, and the slack is a quarter of the finest level's
+// largest half extent. A float stretch rounded to nearest passed it by up to 2^-24 of it: in a
+// level 2^21 times coarser than the finest (boulders beside pebbles) that missed overlapping pairs.
+// 1000.000031 is such a half extent: its nearest float is 1000.000061.
+TEST(BroadphaseStretchCut, ACutStretchIsNoLargerThanItsLevelsLargestBody) {
+  constexpr double kLargest = 1000.000031;
+  ASSERT_GT(static_cast<double>(static_cast<float>(kLargest)), kLargest);
+  std::mt19937 rng(53);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Bodies b;
+  std::uint32_t id = 0;
+  for (int i = 0; i < 60; ++i) {  // the finest level: its slack is 2.5e-5
+    BodyDef d;
+    d.center = {1.0 * i, -5000.0};
+    d.half_extents = {1e-4, 1e-4};
+    b.append(d, id++);
+  }
+  for (int i = 0; i < 20; ++i) {  // the coarsest, the largest of it kLargest
+    BodyDef d;
+    const double half = i == 0 ? kLargest : 600.0 + 400.0 * unit(rng);
+    d.center = {3000.0 * i, 0.0};
+    d.half_extents = {half, half};
+    d.velocity = {(unit(rng) < 0.5 ? -1e5 : 1e5), (unit(rng) < 0.5 ? -1e5 : 1e5)};
+    d.gravity_scale = 0.0;
+    b.append(d, id++);
+  }
+  std::vector<std::uint32_t> slot_of_id(b.size());
+  const std::vector<Origin> origins(b.size(), Origin{});
+  b.canonicalize(slot_of_id, origins);
+  Broadphase bp;
+  bp.configure(b);
+  ASSERT_EQ(bp.level_count(), 2u);
+  bp.build(b, kDt, kGravity);
+  for (std::uint32_t i = 0; i < b.size(); ++i) {
+    if (b.hx(i) < 1.0) continue;
+    const Broadphase::Stretch s = bp.stretched_by()[i];
+    EXPECT_LE(static_cast<double>(s.x), kLargest) << "body " << i;
+    EXPECT_LE(static_cast<double>(s.y), kLargest) << "body " << i;
+    EXPECT_GT(static_cast<double>(s.x), 0.99 * kLargest) << "body " << i << ": cut, not dropped";
+  }
 }
 
 }  // namespace

@@ -37,6 +37,7 @@ void Broadphase::configure(const Bodies& bodies) {
   ref_.reserve(n);
   ref_.resize(n);
   stretch_.assign(n, Stretch{0.0f, 0.0f});
+  stretched_ = false;
   in_overlay_.assign(n, 0);
   overlay_cx_.assign(n, 0);
   overlay_cy_.assign(n, 0);
@@ -150,6 +151,8 @@ void Broadphase::build(const Bodies& bodies, double dt, Vec2 gravity) {
   }
   for (Level& level : levels_)
     level.build(bodies, ref_, stretch_, entry_of_);
+  stretched_ = std::any_of(levels_.begin(), levels_.end(),
+                           [](const Level& level) { return level.stretch > 0.0; });
 }
 
 void Broadphase::insert(const Bodies& bodies, std::uint32_t body) {

@@ -87,6 +87,9 @@ class Broadphase {
   // How far the body's box at (x, y) reaches out of the box it is filed at, on either axis.
   double distance(std::uint32_t body, double x, double y) const {
     const Point& r = ref_[body];
+    // A world filed with no stretch (at rest) skips their loads: the walls' loop notes every
+    // placement, and they cost a resting pyramid 2% of its step.
+    if (!stretched_) return std::max(std::abs(x - r.x), std::abs(y - r.y));
     const Stretch& e = stretch_[body];
     return std::max(std::abs(x - r.x) - e.x, std::abs(y - r.y) - e.y);
   }
@@ -275,6 +278,7 @@ class Broadphase {
   // stretch_ a side on each axis (0 in the overlay and for a body filed at its box).
   std::vector<Point> ref_;
   std::vector<Stretch> stretch_;
+  bool stretched_ = false;  // some stretch_ is not 0
   // The overlay, per slot: in it or not, its cell there, its bucket list's links, and the scan
   // after which it was last filed (stale when later than scan_).
   std::vector<std::uint8_t> in_overlay_;

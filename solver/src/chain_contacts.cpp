@@ -48,6 +48,7 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     near_pairs_.clear();
     reserve_buffer(near_pairs_, last + last / 4);
     ctx.broadphase.for_each_near_pair(bodies, [&](std::uint32_t i, std::uint32_t j) {
+      reserve_one_more(near_pairs_);  // a quarter more when full, not twice as many
       near_pairs_.push_back({i, j});
     });
     state_.begin_sweep(bodies, &near_pairs_);
@@ -78,7 +79,9 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
       // every body.
       if (near_pairs_.size() < state_.lower_offset(n))
         resize_buffer(near_pairs_, state_.lower_offset(n));
-      contacts_.assign(near_pairs_.begin(), near_pairs_.begin() + scan(0, n, near_pairs_.data()));
+      const std::uint32_t found = scan(0, n, near_pairs_.data());
+      reserve_buffer(contacts_, found);
+      contacts_.assign(near_pairs_.begin(), near_pairs_.begin() + found);
       return;
     }
     // Blocks of bodies at once, each into its own stretch of near_pairs_ (as long as its lower
@@ -93,6 +96,7 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     });
     for (std::uint32_t k = 0; k < blocks; ++k) {
       const auto from = near_pairs_.begin() + state_.lower_offset(k * kBlock);
+      reserve_buffer(contacts_, contacts_.size() + block_found_[k]);
       contacts_.insert(contacts_.end(), from, from + block_found_[k]);
     }
     return;
@@ -101,14 +105,14 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     if (bp.stale(i)) {
       bp.for_each_overlap(bodies, i, tol, [&](std::uint32_t j) {
         if ((j < i || !bp.stale(j)) && !(bodies.immovable(i) && bodies.immovable(j)))
-          contacts_.push_back({std::min(i, j), std::max(i, j)});
+          reserve_one_more(contacts_), contacts_.push_back({std::min(i, j), std::max(i, j)});
       });
       continue;
     }
     // Its lower near bodies (those of its near list, in that order) that it overlaps, less the
     // bodies filed again since the scan, which take the pair at their own turn.
     for_each_hit(box, i, state_.lower(i), test, [&](std::uint32_t j) {
-      if (!bp.stale(j)) contacts_.push_back({j, i});
+      if (!bp.stale(j)) reserve_one_more(contacts_), contacts_.push_back({j, i});
     });
   }
 }
@@ -130,6 +134,7 @@ void ChainResolver::gather_suspect_contacts(StepContext& ctx) {
     for (const std::uint32_t j : found_) {
       if (state_.suspect(j) && j < i) continue;  // both flagged: the pair is taken once
       if (bodies.immovable(i) && bodies.immovable(j)) continue;
+      reserve_one_more(contacts_);
       contacts_.push_back({std::min(i, j), std::max(i, j)});
     }
   }

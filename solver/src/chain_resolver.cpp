@@ -18,7 +18,7 @@ void ChainResolver::resolve(StepContext& ctx) {
     const std::size_t n = bodies.size();
     for (auto* v : {&level_, &adj_start_, &queue_, &level_count_})
       reserve_buffer(*v, n + 3);
-    reserve_buffer(contacts_, 2 * n), reserve_buffer(ordered_, 2 * n), reserve_buffer(adj_, 4 * n);
+    // The contact lists (contacts_, ordered_, adj_) are sized by the steps that fill them.
   }
   state_.begin_step(ctx);
   walls_.begin_step(bodies.size());

@@ -134,19 +134,16 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
                      const std::vector<Point>& pre_velocity, double dt) {
   if (links.empty()) return;
   const std::size_t n_links = links.size();
-  if (limit_.capacity() < links.capacity()) {
-    // As many as the link list can hold, so that a busier step does not allocate.
-    for (auto* v : {&normal_, &limit_, &applied_})
-      v->reserve(links.capacity());
-    for (auto* v : {&active_, &adj_})
-      v->reserve(2 * links.capacity());
-    for (auto* v : {&bodies_, &level_, &adj_start_, &queue_})
-      v->reserve(bodies.size() + 2);
-    reserve_buffer(carried_, bodies.size());
-    reserve_buffer(v_before_, bodies.size());
-  }
-  limit_.assign(n_links, 0.0);
+  // Per body, as many as the world has; per link, as many as this step has, growing by a quarter
+  // (buffer.h): sized for as many links as the link list could hold, they held 80 bytes a body
+  // in a rough pile, most of them unused. A step busier than any before allocates once.
+  for (auto* v : {&bodies_, &level_, &adj_start_, &queue_})
+    reserve_buffer(*v, bodies.size() + 2);
+  reserve_buffer(carried_, bodies.size());
+  reserve_buffer(v_before_, bodies.size());
+  assign_buffer(limit_, n_links, 0.0);
   active_.clear();
+  reserve_buffer(active_, n_links);
   bool any = false;
   for (std::size_t k = 0; k < n_links; ++k) {
     limit_[k] = std::sqrt(bodies.friction[links[k].a] * bodies.friction[links[k].b]);
@@ -157,7 +154,7 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
   number_bodies(bodies, links);
   // Both axes' normal impulses come from the velocities the velocity rule left, before any
   // friction changes them.
-  normal_.assign(n_links, 0.0);
+  assign_buffer(normal_, n_links, 0.0);
   normal_impulses(bodies, links, pre_velocity, 0);
   normal_impulses(bodies, links, pre_velocity, 1);
   for (std::size_t k = 0; k < n_links; ++k) {
@@ -166,10 +163,10 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
   }
   if (active_.empty()) return;
 
-  v_before_.resize(bodies_.size());
+  resize_buffer(v_before_, bodies_.size());
   for (std::size_t u = 0; u < bodies_.size(); ++u)
     v_before_[u] = {bodies.vx[bodies_[u]], bodies.vy[bodies_[u]]};
-  applied_.assign(n_links, 0.0);
+  assign_buffer(applied_, n_links, 0.0);
   auto inverse_mass = [&](std::uint32_t slot, int t) {
     if (bodies.immovable(slot) || (bodies.driven[slot] & (t == 0 ? kDriveX : kDriveY))) return 0.0;
     return 1.0 / bodies.mass[slot];

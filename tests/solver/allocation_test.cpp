@@ -201,10 +201,11 @@ TEST(Allocation, RenumberingTheBodiesAllocatesNothing) {
 }
 
 // Bytes a world holds a body, after it has stepped (every buffer at its working size): issue 20's
-// budget is 800. Four layouts of about 10,000 bodies, the sizes at which the per-body arrays'
+// budget is 800. Five layouts of about 10,000 bodies, the sizes at which the per-body arrays'
 // growth showed most (doubled vectors held up to twice what they needed): a pyramid, a wall of
-// columns, a row pushed top-down, a pile of mixed sizes; each stepped with and without skip_rest,
-// and a world with one body created and one destroyed every step.
+// columns, a row pushed top-down, a rough pile (friction's buffers), a pile of mixed sizes; each
+// stepped with and without skip_rest, and a world with one body created and one destroyed every
+// step.
 TEST(Memory, AWorldHoldsAtMost800BytesABody) {
   constexpr double kBudget = 800.0;
   struct Layout {
@@ -241,6 +242,19 @@ TEST(Memory, AWorldHoldsAtMost800BytesABody) {
          w.set_drive(pusher, {2.0, 0.0});
          for (int i = 1; i <= 10'000; ++i)
            w.create_body(dynamic_box(i, 0.0));
+         return 10'001;
+       }},
+      {"rough pile",
+       {0.0, -10.0},
+       [](World& w) {
+         BodyDef floor = static_box(0.0, -1.0, 200.0, 1.0);
+         floor.friction = 0.5;
+         w.create_body(floor);
+         for (int i = 0; i < 10'000; ++i) {
+           BodyDef d = dynamic_box(1.05 * (i % 200) - 105.0, 0.5 + 1.05 * (i / 200));
+           d.friction = 0.5;
+           w.create_body(d);
+         }
          return 10'001;
        }},
       {"mixed pile",

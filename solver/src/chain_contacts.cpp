@@ -122,7 +122,7 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
 void ChainResolver::gather_suspect_contacts(StepContext& ctx) {
   const Broadphase& bp = ctx.broadphase;
   if (fresh_grid_ || near_generation_ != bp.generation()) {
-    near_generation_ = 0;  // forces a new scan
+    near_generation_ = kNotScanned;  // forces a new scan
     gather_contacts(ctx);
     return;
   }

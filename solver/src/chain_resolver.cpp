@@ -82,7 +82,7 @@ void ChainResolver::forget_slots() {
   walls_.forget_slots();
   std::fill(local_mark_.begin(), local_mark_.end(), 0u);
   mark_ = 0;
-  near_generation_ = 0;
+  near_generation_ = kNotScanned;
 }
 
 void ChainResolver::run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b) {

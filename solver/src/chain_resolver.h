@@ -107,8 +107,11 @@ class ChainResolver {
   std::vector<std::uint32_t> block_found_;
   // The near pairs are scanned again once more than one body in this many was filed again since.
   static constexpr std::uint32_t kRescanShare = 8;
-  Frame last_{};                       // the result of the last frame that finished without opening
-  std::uint64_t near_generation_ = 0;  // broadphase generation the near pairs were scanned in
+  Frame last_{};  // the result of the last frame that finished without opening
+  // Broadphase generation the near pairs were scanned in, or kNotScanned (no generation has it:
+  // a world that steps before its first body has generation 0, and no near lists).
+  static constexpr std::uint64_t kNotScanned = ~std::uint64_t{0};
+  std::uint64_t near_generation_ = kNotScanned;
   // The broadphase's examined() when the near pairs were last scanned, and what the scan and its
   // build examined (bodies filed count one each).
   std::uint64_t examined_after_scan_ = 0, scan_cost_ = 0;

@@ -38,4 +38,11 @@ void reserve_one_more(std::vector<T>& v) {
   if (v.size() == v.capacity()) v.reserve(v.size() + v.size() / 4 + 16);
 }
 
+// v.push_back(value), growing as resize_buffer().
+template <class T>
+void push_buffer(std::vector<T>& v, const std::type_identity_t<T>& value) {
+  reserve_one_more(v);
+  v.push_back(value);
+}
+
 }  // namespace chain::detail

@@ -42,14 +42,9 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     if (!fresh_grid_) ctx.broadphase.build(bodies, ctx.dt, ctx.def.gravity);
     fresh_grid_ = false;
     near_generation_ = bp.generation();
-    // As many as the last scan found and a quarter more, before the scan pushes them one by one
-    // (growing as every buffer grows: a scan that finds one pair more does not allocate again).
-    const std::size_t last = near_pairs_.size();
     near_pairs_.clear();
-    reserve_buffer(near_pairs_, last + last / 4);
     ctx.broadphase.for_each_near_pair(bodies, [&](std::uint32_t i, std::uint32_t j) {
-      reserve_one_more(near_pairs_);  // a quarter more when full, not twice as many
-      near_pairs_.push_back({i, j});
+      push_buffer(near_pairs_, {i, j});
     });
     state_.begin_sweep(bodies, &near_pairs_);
     examined_after_scan_ = bp.examined();
@@ -63,6 +58,11 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
   const Bodies::Box* const box = bodies.box.data();
   const OverlapTest test(tol);
   if (bp.near_pairs_hold()) {
+    const std::uint32_t n = bodies.size();
+    // The walks below write at most an entry each into near_pairs_ (the near lists were made from
+    // it, and it is not read again until the next scan refills it).
+    if (near_pairs_.size() < state_.lower_offset(n))
+      resize_buffer(near_pairs_, state_.lower_offset(n));
     // With workers: bodies [begin, end) write their contacts to `out`, at most one per entry.
     auto scan = [&](std::uint32_t begin, std::uint32_t end, Pair* out) {
       Pair* o = out;
@@ -71,14 +71,9 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
       }
       return static_cast<std::uint32_t>(o - out);
     };
-    const std::uint32_t n = bodies.size();
     if (ctx.pool.threads() == 1 || n <= kBlock) {
-      // Into near_pairs_ (room for an entry each: the near lists were made from it, and it is not
-      // read again until the next scan refills it), then copied: pushed back one by one, the
-      // walk kept its constants on the stack for the growing path's call and reloaded them at
-      // every body.
-      if (near_pairs_.size() < state_.lower_offset(n))
-        resize_buffer(near_pairs_, state_.lower_offset(n));
+      // Into near_pairs_, then copied: pushed back one by one, the walk kept its constants on the
+      // stack for the growing path's call and reloaded them at every body.
       const std::uint32_t found = scan(0, n, near_pairs_.data());
       reserve_buffer(contacts_, found);
       contacts_.assign(near_pairs_.begin(), near_pairs_.begin() + found);
@@ -88,8 +83,6 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     // lists), then joined in block order: slot order, as one thread.
     const std::uint32_t blocks = (n + kBlock - 1) / kBlock;
     block_found_.resize(blocks);
-    if (near_pairs_.size() < state_.lower_offset(n))
-      resize_buffer(near_pairs_, state_.lower_offset(n));
     ctx.pool.run(blocks, [&](std::uint32_t k) {
       const std::uint32_t begin = k * kBlock, end = std::min(n, begin + kBlock);
       block_found_[k] = scan(begin, end, near_pairs_.data() + state_.lower_offset(begin));
@@ -105,14 +98,14 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     if (bp.stale(i)) {
       bp.for_each_overlap(bodies, i, tol, [&](std::uint32_t j) {
         if ((j < i || !bp.stale(j)) && !(bodies.immovable(i) && bodies.immovable(j)))
-          reserve_one_more(contacts_), contacts_.push_back({std::min(i, j), std::max(i, j)});
+          push_buffer(contacts_, {std::min(i, j), std::max(i, j)});
       });
       continue;
     }
     // Its lower near bodies (those of its near list, in that order) that it overlaps, less the
     // bodies filed again since the scan, which take the pair at their own turn.
     for_each_hit(box, i, state_.lower(i), test, [&](std::uint32_t j) {
-      if (!bp.stale(j)) reserve_one_more(contacts_), contacts_.push_back({j, i});
+      if (!bp.stale(j)) push_buffer(contacts_, {j, i});
     });
   }
 }
@@ -134,8 +127,7 @@ void ChainResolver::gather_suspect_contacts(StepContext& ctx) {
     for (const std::uint32_t j : found_) {
       if (state_.suspect(j) && j < i) continue;  // both flagged: the pair is taken once
       if (bodies.immovable(i) && bodies.immovable(j)) continue;
-      reserve_one_more(contacts_);
-      contacts_.push_back({std::min(i, j), std::max(i, j)});
+      push_buffer(contacts_, {std::min(i, j), std::max(i, j)});
     }
   }
   state_.begin_sweep(bodies, nullptr);

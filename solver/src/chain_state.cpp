@@ -25,8 +25,8 @@ void ChainState::begin_step(StepContext& ctx) {
   }
   // Each holds a body at most once; checked every step, as a copied world's vectors come without
   // the capacity of the original's.
-  if (reach_order_.capacity() < n) reserve_buffer(reach_order_, n);
-  if (suspects_.capacity() < n) reserve_buffer(suspects_, n);
+  reserve_buffer(reach_order_, n);
+  reserve_buffer(suspects_, n);
   if (++step_ == 0) {  // wrapped: forget every old mark
     for (Marks& m : marks_)
       m.reached = 0;

@@ -36,10 +36,8 @@ BodyId World::create_body(const BodyDef& def) {
   if (std::string e = validate(def); !e.empty()) throw std::invalid_argument("BodyDef: " + e);
   const auto id = static_cast<std::uint32_t>(impl_->slot_of_id.size());
   if (id == BodyId::kInvalid) throw std::length_error("a world holds at most 2^32 - 1 bodies");
-  detail::reserve_one_more(impl_->origin_of_id);
-  detail::reserve_one_more(impl_->slot_of_id);
-  impl_->origin_of_id.push_back(detail::origin_of(def));
-  impl_->slot_of_id.push_back(impl_->bodies.size());
+  detail::push_buffer(impl_->origin_of_id, detail::origin_of(def));
+  detail::push_buffer(impl_->slot_of_id, impl_->bodies.size());
   impl_->bodies.append(def, id);
   if (def.friction > 0.0) ++impl_->rough_bodies;
   impl_->dirty = true;

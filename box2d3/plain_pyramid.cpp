@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "plain_pyramid.h"
+#include "box2d3/plain_pyramid.h"
 
 #include <box2d/box2d.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "box2d_world.h"
+#include "box2d_ref/box2d_world.h"
 
 #include <box2d/box2d.h>
 

@@ -9,8 +9,8 @@
 // side and boxes rest where their declared faces meet.
 #pragma once
 
-#include "drive_schedule.h"
-#include "scene.h"
+#include "model/drive_schedule.h"
+#include "model/scene.h"
 
 #include <cstddef>
 #include <memory>

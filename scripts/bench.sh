@@ -12,11 +12,13 @@ scripts/deps.sh run
 cmake --preset release
 cmake --build --preset release
 mkdir -p results
+py=$(sed -n 's/^CHAINBENCH_PYTHON:INTERNAL=//p' build/CMakeCache.txt)
+py=${py:-python3}
 if [[ $# -eq 0 ]]; then
   build/bin/chainbench_bench --benchmark_out=results/bench.json --benchmark_out_format=json
-  /usr/bin/python3 scripts/bench_table.py results/bench.json --readme README.md \
+  "$py" scripts/bench_table.py results/bench.json --readme README.md \
     --accuracy build/bin/chainbench --runs results/bench_runs
 else
   build/bin/chainbench_bench --benchmark_out=results/bench_part.json --benchmark_out_format=json "$@"
-  /usr/bin/python3 scripts/bench_table.py results/bench_part.json
+  "$py" scripts/bench_table.py results/bench_part.json
 fi

@@ -85,7 +85,9 @@ if [[ $bench -eq 1 ]]; then
     --benchmark_out="$out/bench_quick.json" --benchmark_out_format=json > "$out/bench_quick.txt"
 fi
 
-py=/usr/bin/python3
+# The Python CMake found for the tests (tests/CMakeLists.txt), with matplotlib.
+py=$(sed -n 's/^CHAINBENCH_PYTHON:INTERNAL=//p' build/CMakeCache.txt)
+py=${py:-python3}
 say "replay screenshots"
 "$py" scripts/replay_browser.py "$out"/replay/*.html --speed 16 --json "$out/replay/timings.json" \
   > "$out/replay/timings.txt"

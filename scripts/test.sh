@@ -10,6 +10,9 @@ preset="${1:-release}"
 case "$preset" in release|debug|asan) ;; *) echo "usage: $0 [release|debug|asan]" >&2; exit 2 ;; esac
 
 if [[ "$preset" == asan ]]; then scripts/deps.sh asan; else scripts/deps.sh build; fi
-cmake --preset "$preset"
+# CI builds with warnings as errors; a user's build only shows them.
+werror=()
+if [[ "${CI:-}" == true ]]; then werror=(-DCMAKE_COMPILE_WARNING_AS_ERROR=ON); fi
+cmake --preset "$preset" "${werror[@]}"
 cmake --build --preset "$preset"
 ctest --preset "$preset"

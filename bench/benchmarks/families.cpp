@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-#include "families.h"
+#include "benchmarks/families.h"
 
-#include "scene_library.h"
+#include "scenes/scene_library.h"
 
 #include <string>
 #include <tuple>

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-#include "pair_judging.h"
+#include "benchmarks/pair_judging.h"
 
-#include "lifetimes.h"
-#include "metrics.h"
-#include "presence.h"
-#include "registry.h"
+#include "engines/registry.h"
+#include "index/presence.h"
+#include "judge/metrics.h"
+#include "run/lifetimes.h"
 
 #include <utility>
 

@@ -5,11 +5,11 @@
 // metrics:2), it bounds from below what the metrics of `chainbench run` can cost on that scene.
 #pragma once
 
-#include "engine.h"
-#include "engine_spec.h"
-#include "pair_scan.h"
-#include "scene.h"
-#include "tunnelling.h"
+#include "engines/engine.h"
+#include "engines/engine_spec.h"
+#include "index/pair_scan.h"
+#include "judge/tunnelling.h"
+#include "model/scene.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -10,22 +10,22 @@
 // single step (the worst frame a game budgets for), and every counter the engine declares
 // (registry.h), contacts among them. Each step is timed on the steady clock and handed to Google
 // Benchmark as manual time, so that the median and the slowest come from the times it sums.
-#include "engine.h"
-#include "engine_spec.h"
-#include "families.h"
-#include "lifetimes.h"
-#include "metrics.h"
-#include "pair_judging.h"
-#include "presence.h"
-#include "registry.h"
-#include "scene_library.h"
-#include "state_feed.h"
+#include "benchmarks/families.h"
+#include "benchmarks/pair_judging.h"
+#include "engines/engine.h"
+#include "engines/engine_spec.h"
+#include "engines/registry.h"
+#include "index/presence.h"
+#include "judge/metrics.h"
+#include "run/lifetimes.h"
+#include "run/state_feed.h"
+#include "scenes/scene_library.h"
 
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 
 #ifdef CHAINBENCH_BOX2D3_PLAIN
-#include "plain_pyramid.h"
+#include "box2d3/plain_pyramid.h"
 #endif
 
 #include <algorithm>

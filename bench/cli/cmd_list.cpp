@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // chainbench list, chainbench engines: what can be run, and with which keys.
-#include "commands.h"
-#include "engine_spec.h"
-#include "registry.h"
-#include "scene_library.h"
-#include "text_table.h"
+#include "cli/commands.h"
+#include "engines/engine_spec.h"
+#include "engines/registry.h"
+#include "scenes/scene_library.h"
+#include "support/text_table.h"
 
 #include <filesystem>
 #include <iostream>

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // chainbench merge: joins the parts of a sharded sweep or stress run (merge.h).
-#include "commands.h"
-#include "input_error.h"
-#include "merge.h"
-#include "output_file.h"
-#include "value_checks.h"
+#include "campaign/merge.h"
+#include "cli/commands.h"
+#include "cli/value_checks.h"
+#include "support/input_error.h"
+#include "support/output_file.h"
 
 #include <filesystem>
 #include <fstream>

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 // chainbench replay: one scene in several engines, written as a page that plays them
 // (replay_page.h); `run --replay FILE` writes the same page beside run's other outputs.
-#include "commands.h"
-#include "engine_choice.h"
-#include "input_error.h"
-#include "output_file.h"
-#include "registry.h"
-#include "run_scene.h"
-#include "value_checks.h"
+#include "cli/commands.h"
+#include "cli/engine_choice.h"
+#include "cli/run_scene.h"
+#include "cli/value_checks.h"
+#include "engines/registry.h"
+#include "support/input_error.h"
+#include "support/output_file.h"
 
 #include <memory>
 

@@ -1,17 +1,17 @@
 // SPDX-License-Identifier: MIT
 // chainbench stress: the stiff and extreme cases, in every engine, with verdicts.
-#include "commands.h"
-#include "engine_choice.h"
-#include "input_error.h"
-#include "interrupt.h"
-#include "output_file.h"
-#include "plugin_load.h"
-#include "progress.h"
-#include "registry.h"
-#include "scene_library.h"
-#include "shard.h"
-#include "stress.h"
-#include "value_checks.h"
+#include "campaign/shard.h"
+#include "campaign/stress.h"
+#include "cli/commands.h"
+#include "cli/engine_choice.h"
+#include "cli/interrupt.h"
+#include "cli/progress.h"
+#include "cli/value_checks.h"
+#include "engines/plugin_load.h"
+#include "engines/registry.h"
+#include "scenes/scene_library.h"
+#include "support/input_error.h"
+#include "support/output_file.h"
 
 #include <algorithm>
 #include <exception>

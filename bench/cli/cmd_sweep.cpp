@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: MIT
 // chainbench sweep: error against run time over a grid of engine settings.
-#include "commands.h"
-#include "engine_choice.h"
-#include "input_error.h"
-#include "interrupt.h"
-#include "output_file.h"
-#include "progress.h"
-#include "registry.h"
-#include "scene_file.h"
-#include "scene_library.h"
-#include "scene_vary.h"
-#include "shard.h"
-#include "sweep.h"
-#include "value_checks.h"
+#include "campaign/shard.h"
+#include "campaign/sweep.h"
+#include "cli/commands.h"
+#include "cli/engine_choice.h"
+#include "cli/interrupt.h"
+#include "cli/progress.h"
+#include "cli/value_checks.h"
+#include "engines/registry.h"
+#include "scenes/scene_file.h"
+#include "scenes/scene_library.h"
+#include "scenes/scene_vary.h"
+#include "support/input_error.h"
+#include "support/output_file.h"
 
 #include <algorithm>
 #include <iostream>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "engine_choice.h"
+#include "cli/engine_choice.h"
 
-#include "input_error.h"
-#include "registry.h"
+#include "engines/registry.h"
+#include "support/input_error.h"
 
 #include <algorithm>
 #include <utility>

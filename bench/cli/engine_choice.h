@@ -4,9 +4,9 @@
 // `defaults`, every registered engine's defaults that can, with a note for each one left out.
 #pragma once
 
-#include "engine_spec.h"
-#include "output_file.h"
-#include "scene.h"
+#include "engines/engine_spec.h"
+#include "model/scene.h"
+#include "support/output_file.h"
 
 #include <string>
 #include <utility>

@@ -5,9 +5,9 @@
 // could not be finished, an internal failure, or (stress) the modern solver not ok on a case;
 // 130 a run, sweep or stress stopped by Ctrl-C (what finished is kept). A failed write to standard
 // output or standard error is an output error (1).
-#include "commands.h"
-#include "input_error.h"
-#include "output_file.h"
+#include "cli/commands.h"
+#include "support/input_error.h"
+#include "support/output_file.h"
 
 #include <CLI/CLI.hpp>
 

@@ -8,9 +8,9 @@
 // b2World_Step with `substeps` sub-steps. Its soft contacts sag under load (docs/box2d3.md), so no
 // constant offset could rest boxes at their faces: none is applied. With threads > 1 Box2D's work
 // runs on this adapter's own thread pool (box2d3_tasks.h); Box2D's answer does not depend on it.
-#include "box2d3_tasks.h"
-#include "drive_schedule.h"
-#include "registry.h"
+#include "engines/box2d3_tasks.h"
+#include "engines/registry.h"
+#include "model/drive_schedule.h"
 
 #include <box2d/box2d.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "box2d3_tasks.h"
+#include "engines/box2d3_tasks.h"
 
 #include <algorithm>
 #include <stdexcept>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Box2D 2.4 (box2d_ref/) behind the Engine interface.
-#include "box2d_world.h"
-#include "registry.h"
+#include "box2d_ref/box2d_world.h"
+#include "engines/registry.h"
 
 #include <array>
 

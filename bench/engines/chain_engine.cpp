@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The collision-chaining solver of solver/ behind the Engine interface.
-#include "drive_schedule.h"
-#include "registry.h"
+#include "engines/registry.h"
+#include "model/drive_schedule.h"
 
 #include <chain/world.h>
 

@@ -8,8 +8,8 @@
 // as the Box2D adapter's skin compensation does. Friction and restitution of a contact combine as
 // the scene format says (the square root of the product, and the larger of the two), not Chipmunk's
 // product.
-#include "drive_schedule.h"
-#include "registry.h"
+#include "engines/registry.h"
+#include "model/drive_schedule.h"
 
 #include <chipmunk/chipmunk.h>
 

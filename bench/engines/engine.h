@@ -3,7 +3,7 @@
 // A call per step, never per body: adapters keep their own state in their engine's layout.
 #pragma once
 
-#include "scene.h"
+#include "model/scene.h"
 
 #include <cstdint>
 #include <span>

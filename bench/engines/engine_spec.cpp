@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "engine_spec.h"
+#include "engines/engine_spec.h"
 
-#include "input_error.h"
-#include "registry.h"
+#include "engines/registry.h"
+#include "support/input_error.h"
 
 #include <algorithm>
 #include <charconv>

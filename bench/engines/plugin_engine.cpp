@@ -8,15 +8,15 @@
 // message naming the plugin (InputError: exit status 2, or an `error` verdict in stress). A
 // library is first loaded and checked in a child process (probe_load), so that one that crashes,
 // exits or hangs while loading is refused by name rather than ending chainbench.
-#include "plugin_engine.h"
-#include "child_process.h"
-#include "drive_schedule.h"
-#include "input_error.h"
-#include "plugin_load.h"
-#include "plugin_table.h"
-#include "plugin_text.h"
-#include "registry.h"
-#include "text_table.h"
+#include "engines/plugin_engine.h"
+#include "engines/plugin_load.h"
+#include "engines/plugin_table.h"
+#include "engines/plugin_text.h"
+#include "engines/registry.h"
+#include "model/drive_schedule.h"
+#include "support/child_process.h"
+#include "support/input_error.h"
+#include "support/text_table.h"
 
 #include <chainbench/engine_plugin.h>
 

@@ -5,8 +5,8 @@
 // the fuzzer.
 #pragma once
 
-#include "engine.h"
-#include "engine_spec.h"
+#include "engines/engine.h"
+#include "engines/engine_spec.h"
 
 #include <chainbench/engine_plugin.h>
 

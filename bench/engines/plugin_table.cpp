@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-#include "plugin_table.h"
+#include "engines/plugin_table.h"
 
-#include "engine_spec.h"
-#include "input_error.h"
-#include "plugin_text.h"
-#include "text_table.h"
+#include "engines/engine_spec.h"
+#include "engines/plugin_text.h"
+#include "support/input_error.h"
+#include "support/text_table.h"
 
 #include <cmath>
 #include <set>

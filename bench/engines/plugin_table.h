@@ -5,8 +5,8 @@
 // and the reason.
 #pragma once
 
-#include "engine.h"
-#include "registry.h"
+#include "engines/engine.h"
+#include "engines/registry.h"
 
 #include <chainbench/engine_plugin.h>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "plugin_text.h"
+#include "engines/plugin_text.h"
 
 #include <chainbench/engine_plugin.h>
 

@@ -6,9 +6,9 @@
 // `chainbench_engine(NAME FILE)` in bench/CMakeLists.txt.
 #pragma once
 
-#include "engine.h"
-#include "engine_spec.h"
-#include "scene.h"
+#include "engines/engine.h"
+#include "engines/engine_spec.h"
+#include "model/scene.h"
 
 #include <functional>
 #include <memory>

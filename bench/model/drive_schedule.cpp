@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "drive_schedule.h"
+#include "model/drive_schedule.h"
 
 #include <algorithm>
 

@@ -6,7 +6,7 @@
 // step costs the drivers that start or end in it and the driven bodies, never every driver.
 #pragma once
 
-#include "scene.h"
+#include "model/scene.h"
 
 #include <cstdint>
 #include <span>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "scene.h"
+#include "model/scene.h"
 
 #include <algorithm>
 #include <cmath>

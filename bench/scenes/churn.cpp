@@ -7,7 +7,7 @@
 //
 // The right answer is exact: the wall never moves, and a passing box only falls for its one step
 // (its first state is where it enters; it leaves before the next is judged).
-#include "scene_library.h"
+#include "scenes/scene_library.h"
 
 namespace chainbench {
 namespace {

@@ -2,7 +2,7 @@
 // Level scenes: what a platformer's levels ask of a resolver. Tile floors with seams, fast falling
 // crates, a character walking off a ledge, a crate riding a moving platform and one sliding on a
 // rough floor. Metres, gravity (0, -10), dt 1/60 unless set; each states its analytic answer.
-#include "scene_library.h"
+#include "scenes/scene_library.h"
 
 #include <algorithm>
 #include <cmath>

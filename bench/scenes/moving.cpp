@@ -5,8 +5,8 @@
 // windowed facts that hold on the way. Unit boxes (1 kg) unless said; frictionless, upright and
 // inelastic, as every built-in scene: with restitution 0 no contact ever speeds a body up along
 // its normal, so speeds stay within the ones the scene starts with, plus gravity.
-#include "portable_random.h"
-#include "scene_library.h"
+#include "scenes/portable_random.h"
+#include "scenes/scene_library.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Pushing scenes: a driven body shoving others, top-down and side-on, and a squeeze.
-#include "scene_library.h"
+#include "scenes/scene_library.h"
 
 #include <algorithm>
 

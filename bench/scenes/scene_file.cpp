@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "scene_file.h"
+#include "scenes/scene_file.h"
 
-#include "input_error.h"
-#include "scene_text.h"
+#include "scenes/scene_text.h"
+#include "support/input_error.h"
 
 #include <nlohmann/json.hpp>
 

@@ -2,7 +2,7 @@
 // Scene files: the JSON format of docs/scene-format.md (schema 1), read with nlohmann-json.
 #pragma once
 
-#include "scene.h"
+#include "model/scene.h"
 
 #include <string>
 

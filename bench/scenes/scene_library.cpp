@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "scene_library.h"
+#include "scenes/scene_library.h"
 
-#include "input_error.h"
-#include "text_table.h"
+#include "support/input_error.h"
+#include "support/text_table.h"
 
 #include <algorithm>
 #include <cmath>

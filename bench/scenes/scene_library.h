@@ -3,7 +3,7 @@
 // top-down push, no friction where none matters, no rotation unless asked).
 #pragma once
 
-#include "scene.h"
+#include "model/scene.h"
 
 #include <map>
 #include <optional>

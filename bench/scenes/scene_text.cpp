@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-#include "scene_text.h"
+#include "scenes/scene_text.h"
 
-#include "input_error.h"
+#include "support/input_error.h"
 
 #include <cstring>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-#include "scene_vary.h"
+#include "scenes/scene_vary.h"
 
-#include "input_error.h"
-#include "scene_library.h"
+#include "scenes/scene_library.h"
+#include "support/input_error.h"
 
 #include <algorithm>
 #include <charconv>

@@ -3,7 +3,7 @@
 // parameters (the time step first of all), so that error and cost can be read against it.
 #pragma once
 
-#include "scene.h"
+#include "model/scene.h"
 
 #include <string>
 #include <string_view>

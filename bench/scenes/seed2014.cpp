@@ -3,7 +3,7 @@
 // with y down to metres and seconds with y up: 50 px = 1 m (the engine's 50 px boxes are 1 m),
 // 60 frames a second, so gravity 0.25 px/frame^2 becomes 18 m/s^2. Positions in the original
 // are top-left corners.
-#include "scene_library.h"
+#include "scenes/scene_library.h"
 
 namespace chainbench {
 namespace {

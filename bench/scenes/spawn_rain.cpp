@@ -12,7 +12,7 @@
 // floor or on the box under it, so box j of a slot rests at y = 0.5 + j. Nothing moves them
 // sideways (upright, frictionless, inelastic, and the slots 0.5 m apart), so x never changes.
 // Only the step of a landing may take a box deeper than 5 cm: by its speed times dt.
-#include "scene_library.h"
+#include "scenes/scene_library.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Stacking scenes: boxes resting on boxes under gravity.
-#include "portable_random.h"
-#include "scene_library.h"
+#include "scenes/portable_random.h"
+#include "scenes/scene_library.h"
 
 #include <algorithm>
 #include <cmath>

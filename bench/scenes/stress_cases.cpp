@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Stress scenes: fast bodies, deep overlaps and squeezes, for `chainbench stress`.
-#include "portable_random.h"
-#include "scene_library.h"
+#include "scenes/portable_random.h"
+#include "scenes/scene_library.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "child_process.h"
+#include "support/child_process.h"
 
 #include <fcntl.h>
 #include <poll.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "input_error.h"
+#include "support/input_error.h"
 
 #include <charconv>
 #include <cmath>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-#include "output_file.h"
+#include "support/output_file.h"
 
-#include "input_error.h"
+#include "support/input_error.h"
 
 #include <sys/stat.h>
 #include <unistd.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "text_table.h"
+#include "support/text_table.h"
 
 #include <algorithm>
 #include <charconv>

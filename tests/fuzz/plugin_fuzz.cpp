@@ -11,9 +11,9 @@
 // a key's default, error_size for an error), so that ASan
 // reports any read past the bound.
 #include "byte_reader.h"
-#include "input_error.h"
-#include "plugin_engine.h"
-#include "scene_file.h"
+#include "engines/plugin_engine.h"
+#include "scenes/scene_file.h"
+#include "support/input_error.h"
 
 #include <chainbench/engine_plugin.h>
 

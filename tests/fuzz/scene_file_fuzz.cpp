@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Fuzzes the scene-file loader. Any text must either be refused with an InputError or load as
 // a scene that every engine can build and step a few times with finite results.
-#include "input_error.h"
-#include "registry.h"
-#include "scene_file.h"
+#include "engines/registry.h"
+#include "scenes/scene_file.h"
+#include "support/input_error.h"
 
 #include <algorithm>
 #include <cmath>

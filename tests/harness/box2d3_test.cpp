@@ -3,10 +3,10 @@
 // it rests the built-in stack within the scene's answer, counts the contacts of the large
 // pyramid as Box2D's own writing does, gives the same bits on any thread count, and its task pool
 // runs every item of a task exactly once.
-#include "box2d3_tasks.h"
-#include "registry.h"
-#include "runner.h"
-#include "scene_library.h"
+#include "engines/box2d3_tasks.h"
+#include "engines/registry.h"
+#include "run/runner.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 

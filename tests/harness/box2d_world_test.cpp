@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The Box2D reference: skin compensation, the position solver as the only energy-free
 // displacement, exact masses, kinematic bodies and drivers.
-#include "box2d_world.h"
-#include "metrics.h"
-#include "scene_library.h"
+#include "box2d_ref/box2d_world.h"
+#include "judge/metrics.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Work in a child process: its result comes back, and its death or its hang is an outcome.
-#include "child_process.h"
-#include "stress.h"
+#include "support/child_process.h"
+#include "campaign/stress.h"
 
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
 // The chainbench command against plugins hostile to the process they run in: a result pipe
 // closed early or held open by a process the plugin left behind, writes into the caller's
 // descriptors, memory without end, a library that dies while it is loaded, and a step that fails.
-#include "child_process.h"
 #include "cli_run.h"
+#include "support/child_process.h"
 #include "test_files.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The reference engines' contacts counter counts touching pairs, each once, awake or asleep: the
 // benchmark reports it as the work each engine does per step.
-#include "registry.h"
-#include "scene_library.h"
+#include "engines/registry.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 

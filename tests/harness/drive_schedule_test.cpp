@@ -3,7 +3,7 @@
 // per body, overlapping, empty, never ending), the drives it holds, the drives it reports begun
 // or changed and the bodies it reports released are at every step those a scan of every driver
 // finds, in the order the bodies were first driven; also across jumps and steps back.
-#include "drive_schedule.h"
+#include "model/drive_schedule.h"
 
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
 // What a message echoes of an input: cut to a readable length, control characters and bytes
 // that are not UTF-8 shown as \xNN, so that no input can drive the terminal or make an output
 // that is not UTF-8; and engine specs, which reach plugins and JSON, refused unless UTF-8 text.
-#include "engine_spec.h"
-#include "input_error.h"
+#include "engines/engine_spec.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Engine specs parse to canonical strings, fill defaults, and refuse what they do not know.
-#include "engine_spec.h"
-#include "input_error.h"
+#include "engines/engine_spec.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 

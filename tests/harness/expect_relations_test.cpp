@@ -3,11 +3,11 @@
 // and per-body penetration tolerances: each holds on a correct run and fails on a wrong one (a
 // state placed by hand where an engine could not be made to fail on purpose), and the scene file
 // refuses each malformed form naming the field.
-#include "expectations.h"
-#include "input_error.h"
-#include "runner.h"
-#include "scene_file.h"
-#include "verdict.h"
+#include "judge/expectations.h"
+#include "judge/verdict.h"
+#include "run/runner.h"
+#include "scenes/scene_file.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Expectations: every kind judged on the states it names, its worst state traced to a body and a
 // step, with figures worked out by hand.
-#include "runner.h"
-#include "scene_library.h"
+#include "run/runner.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 

@@ -4,10 +4,10 @@
 // isolated engine differs from what the same engine gives in process. The comparison is
 // EngineRun's defaulted operator==, so a field added later and left out of the bytes fails here
 // (the scenes below give every field of an expectation result a value other than its default).
-#include "isolated_run.h"
-#include "report.h"
-#include "runner.h"
-#include "scene_file.h"
+#include "run/isolated_run.h"
+#include "output/report.h"
+#include "run/runner.h"
+#include "scenes/scene_file.h"
 
 #include <gtest/gtest.h>
 

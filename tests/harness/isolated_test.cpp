@@ -3,10 +3,10 @@
 // that fights back: a result pipe closed early or held open by a process the child left behind,
 // descriptors of the caller's files within reach, memory without end, and a plugin whose step
 // fails (an error row, not the end of the run), or that dies while it is loaded.
-#include "child_process.h"
-#include "input_error.h"
-#include "registry.h"
-#include "runner.h"
+#include "engines/registry.h"
+#include "run/runner.h"
+#include "support/child_process.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 

@@ -2,9 +2,9 @@
 // The level scenes' right answers admit every sound discretisation: an engine that moves as the
 // physics says meets them whatever the speed and time step, including a character whose edge
 // reaches the ledge exactly at a step and a friction stop shorter than one step's travel.
-#include "engine_spec.h"
-#include "runner.h"
-#include "scene_library.h"
+#include "engines/engine_spec.h"
+#include "run/runner.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 

@@ -5,8 +5,8 @@
 // away, not finite), on every path the recorder takes (finding the moved bodies itself, told
 // which changed, scanning every body); a body entering is no move, no blow-up and no tunnelling;
 // a body leaving and one entering in its place in the state between them never overlap.
-#include "metrics.h"
-#include "presence.h"
+#include "index/presence.h"
+#include "judge/metrics.h"
 
 #include <gtest/gtest.h>
 

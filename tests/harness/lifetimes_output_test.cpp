@@ -4,15 +4,15 @@
 // body's rows only while it is in the world and a row with empty values when it leaves; the
 // replay page carries the lives it draws bodies by and stores nothing for a body out of the
 // world; and spawn_rain's verdicts, with every metric on, are physically true in every engine.
-#include "position_stream.h"
-#include "registry.h"
-#include "replay_page.h"
-#include "replay_recorder.h"
-#include "report.h"
-#include "runner.h"
-#include "scene_file.h"
-#include "scene_library.h"
-#include "trace_writer.h"
+#include "engines/registry.h"
+#include "output/position_stream.h"
+#include "output/replay_page.h"
+#include "output/replay_recorder.h"
+#include "output/report.h"
+#include "output/trace_writer.h"
+#include "run/runner.h"
+#include "scenes/scene_file.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

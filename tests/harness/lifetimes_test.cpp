@@ -4,11 +4,11 @@
 // a body's life is refused, plugins without CB_CAN_LIFETIMES are refused by name, spawn_rain meets
 // its stated answer, and the chain solver's runs with spawns are the same bits twice and on two
 // threads.
-#include "input_error.h"
-#include "registry.h"
-#include "runner.h"
-#include "scene_file.h"
-#include "scene_library.h"
+#include "engines/registry.h"
+#include "run/runner.h"
+#include "scenes/scene_file.h"
+#include "scenes/scene_library.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Shards and merging: which units a part runs, and how parts join (or are refused).
-#include "merge.h"
-#include "input_error.h"
-#include "shard.h"
+#include "campaign/merge.h"
+#include "campaign/shard.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 // (told which bodies changed, or finding them itself) agrees to the bit with one that scans every
 // body every step, and both with a brute-force pass
 // over every pair (touching boxes, which do not overlap, and pairs of immovable bodies included).
-#include "metrics.h"
+#include "judge/metrics.h"
 
 #include <gtest/gtest.h>
 

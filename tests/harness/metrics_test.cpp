@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Each metric on cases small enough to compute by hand.
-#include "metrics.h"
-#include "pair_scan.h"
-#include "tunnelling.h"
+#include "judge/metrics.h"
+#include "index/pair_scan.h"
+#include "judge/tunnelling.h"
 
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
 // The moving scenes (bench/scenes/moving.cpp) and the stack wall: each builds a valid scene that
 // states where every dynamic body ends, scales with its size parameter, states the answers its
 // recipe derives, and the modern solver meets them, as Box2D does at these sizes.
-#include "scene_library.h"
-#include "stress.h"
+#include "campaign/stress.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 

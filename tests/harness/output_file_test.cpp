@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Output files, whole or not at all: the target changes only when an output is committed, keeps
 // its mode and its symbolic link, and no temporary outlives its output.
-#include "output_file.h"
-#include "input_error.h"
+#include "support/output_file.h"
+#include "support/input_error.h"
 #include "test_files.h"
 
 #include <gtest/gtest.h>

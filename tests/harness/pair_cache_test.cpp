@@ -3,9 +3,9 @@
 // drift at steady speeds (the cache keeps its list), start and stop, and now and then jump far or
 // turn non-finite, or are thrown so far that their boxes are giants (it refits those bodies, or
 // files all again), whether every body is measured or only the moved ones.
-#include "pair_cache.h"
+#include "index/pair_cache.h"
 
-#include "metrics.h"
+#include "judge/metrics.h"
 
 #include <gtest/gtest.h>
 

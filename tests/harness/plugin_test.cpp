@@ -3,11 +3,11 @@
 // plugin written in C shows that the scene, the drivers and the counters cross the C ABI intact
 // (its free fall matches the analytic answer), and one build of it per fault shows that every way
 // a plugin can go wrong stops the run with a message naming the plugin and the reason.
-#include "input_error.h"
-#include "registry.h"
-#include "runner.h"
-#include "stress.h"
-#include "trace_writer.h"
+#include "campaign/stress.h"
+#include "engines/registry.h"
+#include "output/trace_writer.h"
+#include "run/runner.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 

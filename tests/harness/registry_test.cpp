@@ -2,8 +2,8 @@
 // The engine registry: every adapter's declaration is consistent (keys, defaults, grids, gates
 // and benchmarks all parse), and every capability an engine claims is physically there, while a
 // scene that needs one it lacks is refused by name instead of run wrong.
-#include "registry.h"
-#include "input_error.h"
+#include "engines/registry.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 

@@ -2,13 +2,13 @@
 // Replay pages: the position stream round-trips within half a quantum, keeps bodies at rest out
 // and decimates to the states it names; the recorder measures every engine from the reference
 // at every step; the page holds its data inline, fits its size limit and marks what failed.
-#include "input_error.h"
-#include "position_stream.h"
-#include "replay_page.h"
-#include "replay_recorder.h"
-#include "report.h"
-#include "runner.h"
-#include "scene_library.h"
+#include "output/position_stream.h"
+#include "output/replay_page.h"
+#include "output/replay_recorder.h"
+#include "output/report.h"
+#include "run/runner.h"
+#include "scenes/scene_library.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The runner: timing samples, metrics only when asked, chain statistics, expectations, traces.
-#include "runner.h"
-#include "scene_library.h"
-#include "trace_writer.h"
+#include "run/runner.h"
+#include "output/trace_writer.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Scene files: a valid file reads as written; every class of bad input is refused with the file,
 // the JSON path and the reason.
-#include "scene_file.h"
-#include "input_error.h"
+#include "scenes/scene_file.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Built-in scenes: every one builds a valid scene with its defaults; --set is checked before
 // anything is built.
-#include "scene_library.h"
-#include "input_error.h"
+#include "scenes/scene_library.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 

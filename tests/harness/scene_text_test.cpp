@@ -3,9 +3,9 @@
 // when it holds control characters or bytes that are not UTF-8 or is longer than a name may be;
 // a NUL byte or a UTF-16 byte order mark refused; a UTF-8 byte order mark skipped; and no message
 // ever echoes what it refuses raw.
-#include "scene_text.h"
-#include "input_error.h"
-#include "scene_file.h"
+#include "scenes/scene_text.h"
+#include "scenes/scene_file.h"
+#include "support/input_error.h"
 
 #include <gtest/gtest.h>
 

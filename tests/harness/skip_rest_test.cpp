@@ -2,9 +2,9 @@
 // The chain engine's skip_rest key: on every built-in scene, skipping the steps a world at rest
 // would rebuild gives the same bits as solving every step, on one thread and on two, and the
 // scenes that come to rest do skip.
-#include "registry.h"
-#include "runner.h"
-#include "scene_library.h"
+#include "engines/registry.h"
+#include "run/runner.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 

@@ -2,12 +2,12 @@
 // A StateFeed holds exactly what reading the whole state every step gives, before and after each
 // step, and where the engine lists its changes (the chain engine), the list is exactly the bodies
 // whose bits changed; the metrics computed from those lists are those of a full scan.
-#include "state_feed.h"
+#include "run/state_feed.h"
 
-#include "engine_spec.h"
-#include "metrics.h"
-#include "registry.h"
-#include "scene_library.h"
+#include "engines/engine_spec.h"
+#include "engines/registry.h"
+#include "judge/metrics.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 

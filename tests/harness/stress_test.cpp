@@ -2,10 +2,10 @@
 // The stress matrix and its verdicts: every case builds with its right answer, the groups are all
 // there, and the child-process verdicts see wrong results, tunnelling, errors and hangs for what
 // they are.
-#include "stress.h"
-#include "registry.h"
-#include "scene_library.h"
-#include "verdict.h"
+#include "campaign/stress.h"
+#include "engines/registry.h"
+#include "judge/verdict.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Sweeps: the Pareto front calls a point faster only by more than the timing spread.
-#include "sweep.h"
+#include "campaign/sweep.h"
 
-#include "engine_spec.h"
+#include "engines/engine_spec.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // TextTable: tables of numbers right-aligned; tables of text (wrap_text) left-aligned with the last
 // column wrapped within the width, none of its words lost.
-#include "text_table.h"
+#include "support/text_table.h"
 
 #include <gtest/gtest.h>
 

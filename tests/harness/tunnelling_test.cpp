@@ -2,7 +2,7 @@
 // Tunnelling judged by where each centre goes in and comes out: the property that a body whose
 // centre runs into two touching blocks along their shared face and comes out at the far end
 // passed through them, whatever the sizes, the speed and the rounding of the scene's decimals.
-#include "tunnelling.h"
+#include "judge/tunnelling.h"
 
 #include <gtest/gtest.h>
 

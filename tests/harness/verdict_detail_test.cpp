@@ -2,11 +2,11 @@
 // Verdicts that say what failed and by how much: a bullet run along a seam is tunnelled, a scene
 // faster than an engine allows says so, metres and m/s are kept apart, and a near miss is told
 // from a clear one.
-#include "report.h"
-#include "runner.h"
-#include "scene_file.h"
-#include "scene_library.h"
-#include "stress.h"
+#include "campaign/stress.h"
+#include "output/report.h"
+#include "run/runner.h"
+#include "scenes/scene_file.h"
+#include "scenes/scene_library.h"
 
 #include <gtest/gtest.h>
 

@@ -2,9 +2,9 @@
 // Verdicts that tell the physical truth, on scene files under tests/scenes/verdicts/ that state
 // their analytic answers: each engine is judged right or wrong by physics, never by another
 // engine.
-#include "report.h"
-#include "runner.h"
-#include "scene_file.h"
+#include "output/report.h"
+#include "run/runner.h"
+#include "scenes/scene_file.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Bodies created overlapping are pushed apart without any body passing through another, judged as
-// the harness judges it (bench/analysis/tunnelling.h): from positions alone, each step a straight
+// the harness judges it (bench/judge/tunnelling.h): from positions alone, each step a straight
 // move, a pair that came to overlap through one face never leaves through the opposite one after
 // its relative centre crossed the other's middle with half the smaller box across it.
 #include "world_helpers.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The view's mapping between world metres (y up) and canvas pixels (y down): a centre and a
 // scale, changed by fitting, zooming about a point and panning.
 class Camera {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The charts under the scene, one panel per figure over the steps, one line per engine: the
 // distance from the reference's centres (largest over the dynamic bodies), the energy-free
 // displacement of each step (summed over them), the deepest overlap of any two boxes and the wall

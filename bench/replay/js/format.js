@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Number and text formatting shared by the panels, the tooltip and the charts.
 
 // A length or other figure in metres with `digits` significant digits: "0.0123", "1.2e-7", "0".

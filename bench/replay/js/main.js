@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Builds the page from its data, wires the controls, and exposes window.replay: the handle a
 // user's console or a test (tests/browser/) drives the page with.
 

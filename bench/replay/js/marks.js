@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the page marks on the scene, the charts and the side panel: the scene's expectations
 // (where a body should be, bounds on its centre) and, per engine, its failed checks (the
 // verdict's findings, each with its bodies and step), its events (a crushed body, say) and its

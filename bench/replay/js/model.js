@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The replay's data as the views ask for it: bodies, engines and each engine's centre of every
 // body at any step, from the page's JSON (written by bench/analysis/replay_page.cpp).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The side panel (engines with their verdicts, the expectations, the events and failed checks,
 // how the page stores the runs), the readout under the scene and the tooltips.
 

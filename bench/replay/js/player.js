@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Plays the steps at the simulation's own pace (one step every dt seconds) times a speed, on the
 // browser's animation frames, skipping steps when drawing cannot keep up rather than slowing
 // down. Keeps the time each frame took to draw and the gaps between frames, for window.replay.

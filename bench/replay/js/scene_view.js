@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Draws the scene at a step on the main canvas: static and kinematic bodies once in grey, every
 // dynamic body once per engine in that engine's colour (lower engines with wider outlines, so
 // boxes in the same place still show every engine), the scene's expectations, the failed checks

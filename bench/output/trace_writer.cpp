@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+#include "output/trace_writer.h"
+
+#include <charconv>
+#include <cstring>
+#include <limits>
+
+namespace chainbench {
+
+std::string csv_quoted(const std::string& text) {
+  std::string q = "\"";
+  for (const char c : text) {
+    if (c == '"') q.push_back('"');
+    q.push_back(c);
+  }
+  q.push_back('"');
+  return q;
+}
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos && !text.empty()) return text;
+  return csv_quoted(text);
+}
+
+namespace {
+
+// The shortest text that reads back as exactly `v` (to_chars' round-trip guarantee): far from
+// the origin, six significant digits would lose whole metres.
+void append_number(std::string& line, double v) {
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  line.append(buf, ec == std::errc() ? end : buf);
+}
+
+bool same_bits(const std::array<double, 7>& a, const std::array<double, 7>& b) {
+  return std::memcmp(a.data(), b.data(), sizeof a) == 0;
+}
+
+}  // namespace
+
+TraceWriter::TraceWriter(std::ostream& out, const Scene& scene) : out_(out) {
+  out_ << "engine,step,body,x,y,vx,vy,angle,displacement,penetration\n"
+       << "# chainbench trace 2: a body's row is written at step 1 and then when a value in it "
+          "changes; a missing row repeats the body's previous row\n";
+  line_.reserve(256);
+  append_number(line_, scene.dt);
+  out_ << "# dt " << line_ << " s (time = step * dt)\n"
+       << "# steps " << scene.steps << " (rows after an engine's last row repeat it)\n";
+  if (scene.has_lifetimes()) {
+    out_ << "# bodies come and go: a body has rows only while it is in the world, the first at the "
+            "state it enters in; a row with its values empty says it left in the step before\n";
+  }
+  for (const SceneBody& b : scene.bodies)
+    names_.push_back(csv_field(b.name));
+}
+
+void TraceWriter::begin(const EngineSpec& spec, std::span<const CounterDef>) {
+  label_ = csv_field(spec.label());
+  out_ << "# engine " << spec.label() << " = " << spec.str() << '\n';
+  last_.assign(names_.size(), Row{});
+  shown_.assign(names_.size(), 0);
+}
+
+void TraceWriter::observe(const StepView& v) {
+  const BodyState& s = *v.state;
+  auto start = [&](std::size_t i) {
+    line_ = label_;
+    line_ += ',';
+    line_ += std::to_string(v.step);
+    line_ += ',';
+    line_ += names_[i];
+  };
+  for (std::size_t i = 0; i < s.position.size(); ++i) {
+    if (!v.present.empty() && !v.present[i]) {  // out of the world: its entries are no state
+      if (!shown_[i]) continue;
+      shown_[i] = 0;
+      start(i);
+      line_ += ",,,,,,,\n";  // it left in the step before this state
+      out_ << line_;
+      continue;
+    }
+    const Row row = {s.position[i].x, s.position[i].y,   s.velocity[i].x, s.velocity[i].y,
+                     s.angle[i],      v.displacement[i], v.penetration[i]};
+    if (shown_[i] && same_bits(row, last_[i])) continue;
+    last_[i] = row;
+    shown_[i] = 1;
+    start(i);
+    for (const double value : row) {
+      line_ += ',';
+      append_number(line_, value);
+    }
+    line_ += '\n';
+    out_ << line_;
+  }
+}
+
+}  // namespace chainbench

@@ -15,8 +15,9 @@ ROOMS = {
     "model": [],
     "scenes": ["model", "support"],
     "box2d_ref": ["model"],
+    "chipmunk_ref": ["model"],
     "box2d3": ["model", "support", "engines"],
-    "engines": ["model", "support", "box2d_ref"],
+    "engines": ["model", "support", "box2d_ref", "chipmunk_ref"],
     "index": ["engines", "model", "support"],
     "judge": ["index", "engines", "model", "support"],
     "run": ["judge", "index", "engines", "model", "support"],
@@ -35,7 +36,7 @@ INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"', re.M)
 
 def room_dir(project, room):
     top = project / room
-    return top if room in ("box2d_ref", "box2d3") else project / "bench" / room
+    return top if room in ("box2d_ref", "chipmunk_ref", "box2d3") else project / "bench" / room
 
 
 def check(project):

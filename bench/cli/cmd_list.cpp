@@ -4,6 +4,7 @@
 #include "engines/engine_spec.h"
 #include "engines/registry.h"
 #include "scenes/scene_library.h"
+#include "support/number_text.h"
 #include "support/text_table.h"
 
 #include <filesystem>
@@ -18,7 +19,7 @@ constexpr std::size_t kListWidth = 100;
 
 std::string range(const SceneParam& p) {
   std::string out = "[";  // appended: "[" + a temporary makes GCC 12 warn of a false overlap
-  out += fmt_exact(p.min) + ", " + fmt_exact(p.max) + "]";
+  out += exact_number(p.min) + ", " + exact_number(p.max) + "]";
   return p.integer ? out + " whole" : out;
 }
 
@@ -34,7 +35,7 @@ int list_scenes() {
     // Every key --set takes: the scene's own, then those every scene takes (all_params).
     TextTable t({"    key", "default", "range", "meaning"});
     for (const SceneParam& p : all_params(r))
-      t.add({"    " + p.key, fmt_exact(p.value), range(p), p.help});
+      t.add({"    " + p.key, exact_number(p.value), range(p), p.help});
     t.wrap_text(kListWidth);
     t.print(std::cout);
   }
@@ -73,7 +74,7 @@ std::string values_text(const KeyDef& k) {
   for (const std::string& c : k.choices)
     values += (values.empty() ? "" : "|") + c;
   if (!values.empty()) return values;
-  return "[" + fmt_g(k.min, 9) + ", " + fmt_g(k.max, 9) + "]" + (k.integer ? " whole" : "");
+  return "[" + exact_number(k.min) + ", " + exact_number(k.max) + "]" + (k.integer ? " whole" : "");
 }
 
 // The spec's value of `k` where it is not the key's default in that spec, else empty: what the
@@ -128,7 +129,7 @@ int list_engines() {
     t.wrap_text(kListWidth);
     t.print(std::cout);
     for (const EngineLimit& l : e.limits)
-      std::cout << "  limit: " << l.what << ": " << fmt_g(l.value, 9) << " " << l.unit << "\n";
+      std::cout << "  limit: " << l.what << ": " << exact_number(l.value) << " " << l.unit << "\n";
     if (!e.defaults.empty()) {
       std::cout << "  canonical default: " << parse_engine_spec(e.name).str() << "\n";
       std::string runs;
@@ -165,7 +166,7 @@ int list_engine(const std::string& text) {
   t.print(std::cout);
   std::cout << "\ncan do: " << capabilities(spec) << "\n";
   for (const EngineLimit& l : e.limits)
-    std::cout << "limit: " << l.what << ": " << fmt_g(l.value, 9) << " " << l.unit << "\n";
+    std::cout << "limit: " << l.what << ": " << exact_number(l.value) << " " << l.unit << "\n";
   const std::vector<CounterDef> counters = e.spec_counters ? e.spec_counters(spec) : e.counters;
   std::cout << "\ncounters:" << (counters.empty() ? " none" : "") << "\n";
   if (!counters.empty()) {

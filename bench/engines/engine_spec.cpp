@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "engines/engine_spec.h"
+#include "support/number_text.h"
 
 #include "engines/registry.h"
 #include "support/input_error.h"
@@ -34,13 +35,6 @@ std::string join(const std::vector<std::string>& items, const char* separator) {
   for (const std::string& item : items)
     s += (s.empty() ? "" : separator) + item;
   return s;
-}
-
-// The shortest text that reads back as v.
-std::string shortest(double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
 }
 
 // The default of `key` given the values of the keys before it.
@@ -107,9 +101,9 @@ std::string checked_key_value(const std::string& what, const KeyDef& key,
   const double v = parse_number(what, value);
   if (v < key.min || v > key.max) {
     throw InputError(what + ": " + cut_for_message(value) + " is out of range [" +
-                     shortest(key.min) + ", " + shortest(key.max) + "]");
+                     exact_number(key.min) + ", " + exact_number(key.max) + "]");
   }
-  return shortest(v + 0.0);  // -0 is 0: one spec, one label
+  return exact_number(v + 0.0);  // -0 is 0: one spec, one label
 }
 
 void add_key_settings(const std::string& where, const std::vector<KeyDef>& keys,

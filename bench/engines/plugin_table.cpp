@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "engines/plugin_table.h"
+#include "support/number_text.h"
 
 #include "engines/engine_spec.h"
 #include "engines/plugin_text.h"
@@ -69,8 +70,8 @@ std::vector<KeyDef> check_keys(const Plugin& p) {
         return !std::isfinite(v) || std::abs(v) > limit || (def.integer && v != std::floor(v));
       };
       if (bad(def.min) || bad(def.max) || def.min > def.max) {
-        throw InputError(key_at + ": its range [" + fmt_g(def.min, 9) + ", " + fmt_g(def.max, 9) +
-                         "] is not " +
+        throw InputError(key_at + ": its range [" + exact_number(def.min) + ", " +
+                         exact_number(def.max) + "] is not " +
                          (def.integer ? "two whole numbers within 2^53" : "two finite numbers") +
                          ", the first no larger");
       }

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "engines/registry.h"
+#include "support/number_text.h"
 
 #include "support/input_error.h"
 #include "support/text_table.h"
@@ -39,9 +40,7 @@ KeyDef number_key(std::string name, double default_value, double min, double max
                   std::string help) {
   KeyDef k;
   k.name = std::move(name);
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, default_value);
-  k.default_value.assign(buf, r.ptr);
+  k.default_value = exact_number(default_value);
   k.min = min;
   k.max = max;
   k.integer = false;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "model/scene.h"
+#include "support/number_text.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +12,7 @@ namespace chainbench {
 namespace {
 
 std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
+  return exact_number(v);
 }
 
 class Checker {

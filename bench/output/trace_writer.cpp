@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "output/trace_writer.h"
+#include "support/number_text.h"
 
 #include <charconv>
 #include <cstring>
@@ -24,14 +25,6 @@ std::string csv_field(const std::string& text) {
 
 namespace {
 
-// The shortest text that reads back as exactly `v` (to_chars' round-trip guarantee): far from
-// the origin, six significant digits would lose whole metres.
-void append_number(std::string& line, double v) {
-  char buf[32];
-  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  line.append(buf, ec == std::errc() ? end : buf);
-}
-
 bool same_bits(const std::array<double, 7>& a, const std::array<double, 7>& b) {
   return std::memcmp(a.data(), b.data(), sizeof a) == 0;
 }
@@ -43,7 +36,7 @@ TraceWriter::TraceWriter(std::ostream& out, const Scene& scene) : out_(out) {
        << "# chainbench trace 2: a body's row is written at step 1 and then when a value in it "
           "changes; a missing row repeats the body's previous row\n";
   line_.reserve(256);
-  append_number(line_, scene.dt);
+  append_exact_number(line_, scene.dt);
   out_ << "# dt " << line_ << " s (time = step * dt)\n"
        << "# steps " << scene.steps << " (rows after an engine's last row repeat it)\n";
   if (scene.has_lifetimes()) {
@@ -87,7 +80,7 @@ void TraceWriter::observe(const StepView& v) {
     start(i);
     for (const double value : row) {
       line_ += ',';
-      append_number(line_, value);
+      append_exact_number(line_, value);
     }
     line_ += '\n';
     out_ << line_;

@@ -5,8 +5,8 @@
 // The engine by its label, the body by its name; comment lines (#) give the format, dt (time is
 // step * dt) and each engine's full spec once. A body's row is written at step 1 and then only
 // when some value in it changed: a missing row repeats the body's previous one, so bodies at rest
-// and static bodies cost one row each. Numbers are the shortest text that reads back to the same
-// double, so nothing is rounded. Where bodies come and go (StepView::present), a body has rows
+// and static bodies cost one row each. Numbers are exact (support/number_text.h), so nothing is
+// rounded. Where bodies come and go (StepView::present), a body has rows
 // only while it is in the world: the first at the state it enters in (step 1 for a body there
 // from the start), and once it has left, one row with its seven values empty, at the first state
 // it is not in.

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "scenes/scene_library.h"
+#include "support/number_text.h"
 
 #include "support/input_error.h"
 #include "support/text_table.h"
@@ -12,7 +13,7 @@ namespace chainbench {
 namespace {
 
 std::string num(double v) {
-  return fmt_exact(v);  // every digit: a rounded value could look equal to its bound
+  return exact_number(v);  // every digit: a rounded value could look equal to its bound
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "scenes/scene_vary.h"
+#include "support/number_text.h"
 
 #include "scenes/scene_library.h"
 #include "support/input_error.h"
@@ -10,13 +11,6 @@
 
 namespace chainbench {
 namespace {
-
-// Every digit a double needs to read back as itself.
-std::string exact_text(double v) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
 
 double parse_value(const std::string& what, const std::string& text) {
   const std::size_t slash = text.find('/');
@@ -86,10 +80,10 @@ Scene make_varied_scene(std::string_view name, const std::vector<std::string>& s
   if (v < p->min || v > p->max || (p->integer && v != std::floor(v))) {
     throw InputError("--vary " + vary.key + "=" + vary.texts[k] + ": scene " + recipe->name +
                      " takes " + (p->integer ? "whole numbers" : "values") + " in [" +
-                     exact_text(p->min) + ", " + exact_text(p->max) + "]");
+                     exact_number(p->min) + ", " + exact_number(p->max) + "]");
   }
   std::vector<std::string> with = sets;
-  with.push_back(vary.key + "=" + exact_text(vary.values[k]));
+  with.push_back(vary.key + "=" + exact_number(vary.values[k]));
   if (keeps_simulated_time(vary, sets)) {
     const double steps = std::round(recipe->steps * (1.0 / 60.0) / v);
     if (steps > limits::kMaxSteps) {
@@ -97,7 +91,7 @@ Scene make_varied_scene(std::string_view name, const std::vector<std::string>& s
                        " would need more than " + std::to_string(limits::kMaxSteps) +
                        " steps to last its default time");
     }
-    with.push_back("steps=" + exact_text(std::max(1.0, steps)));
+    with.push_back("steps=" + exact_number(std::max(1.0, steps)));
   }
   return make_scene(name, with);
 }

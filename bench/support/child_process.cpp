@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "support/child_process.h"
+#include "support/number_text.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -247,9 +248,7 @@ std::string signal_text(int signal) {
 std::string child_failure(const ChildOutcome& o, double timeout_s, const std::string& where) {
   std::string why;
   if (o.hang) {
-    char text[64];
-    std::snprintf(text, sizeof text, "ran out of time (%g s)", timeout_s);
-    why = text;
+    why = "ran out of time (" + exact_number(timeout_s) + " s)";
   } else if (o.interrupted) {
     return "interrupted";
   } else if (o.signal != 0) {

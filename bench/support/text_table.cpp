@@ -140,18 +140,6 @@ std::string fmt_g(double v, int digits) {
   return buf;
 }
 
-std::string fmt_exact(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buf[32];
-  if (v == std::floor(v) && std::fabs(v) < 1e15) {
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-    return buf;
-  }
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
-}
-
 std::string fmt_ms(double ms) {
   char buf[32];
   std::snprintf(buf, sizeof buf, ms >= 100 ? "%.0f" : (ms >= 1 ? "%.2f" : "%.4f"), ms);

@@ -39,9 +39,5 @@ std::string concat(std::initializer_list<std::string_view> parts);
 std::string fmt_g(double v, int digits = 3);
 std::string fmt_ms(double ms);
 
-// Every digit of v: a whole number below 1e15 in magnitude as an integer ("2147483648"), any
-// other as the shortest text that reads back as v. For ranges and values in messages, where a
-// rounded value could look equal to its bound.
-std::string fmt_exact(double v);
 
 }  // namespace chainbench

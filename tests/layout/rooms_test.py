@@ -12,7 +12,7 @@ import sys
 # Each room and the rooms it may include (besides itself). Order matters only for reading.
 ROOMS = {
     "support": [],
-    "model": [],
+    "model": ["support"],
     "scenes": ["model", "support"],
     "box2d_ref": ["model"],
     "chipmunk_ref": ["model"],

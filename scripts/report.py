@@ -17,9 +17,14 @@ import bench_table  # noqa: E402  (the README's results tables, reused)
 import report_conclusion  # noqa: E402  (the opening section)
 import stress_table  # noqa: E402  (the README's stress results, reused)
 
-ORDER = ["stack", "pyramid", "many_pyramids", "mass_ratio_stack", "heavy_on_light", "overlap_recovery",
-         "random_pile", "push_row", "push_into_wall", "push_stack", "squeeze", "seed_stack", "seed_squeeze",
-         "seed_falling_row"]
+def suite_order(root):
+    """The default suite's scenes in their order (RESULTS/suite.txt, which scripts/run.sh writes
+    from `chainbench list --suite default`); other runs follow by name."""
+    try:
+        with open(os.path.join(root, "suite.txt"), encoding="utf-8") as f:
+            return [line.strip() for line in f if line.strip()]
+    except OSError:
+        return []
 
 
 COLUMNS = """What the columns say:
@@ -243,9 +248,10 @@ def main():
     root = sys.argv[1]
     plots = os.path.join(root, "plots")
     runs_dir = os.path.join(root, "runs")
+    order = suite_order(root)
     try:
         names = sorted((f[:-5] for f in os.listdir(runs_dir) if f.endswith(".json")),
-                       key=lambda n: (ORDER.index(n) if n in ORDER else len(ORDER), n))
+                       key=lambda n: (order.index(n) if n in order else len(order), n))
         runs = [load(os.path.join(runs_dir, n + ".json")) for n in names]
     except (OSError, ValueError) as e:
         sys.exit(f"report.py: cannot read the runs in {runs_dir}: {e}")

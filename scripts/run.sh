@@ -40,9 +40,13 @@ mkdir -p "$out/runs" "$out/traces" "$out/plots" "$out/replay"
 start=$SECONDS
 say() { echo "run.sh: $* ($((SECONDS - start)) s)" >&2; }
 
-scenes=(stack pyramid many_pyramids mass_ratio_stack heavy_on_light overlap_recovery random_pile
-        push_row push_into_wall push_stack squeeze seed_stack seed_squeeze seed_falling_row
-        rain smash bulldozer spawn_rain)
+# The default suite, as the command names it; the report lists the runs in this order.
+mapfile -t scenes < <("$cb" list --suite default)
+if [[ ${#scenes[@]} -eq 0 ]]; then
+  echo "run.sh: $cb list --suite default named no scene" >&2
+  exit 1
+fi
+printf '%s\n' "${scenes[@]}" > "$out/suite.txt"
 traced=(stack overlap_recovery push_stack squeeze seed_squeeze)
 # Every reference as games ship it and as it runs by default: sleeping on and off (and Box2D v3
 # where it is built), so that the report's ratios answer against each.

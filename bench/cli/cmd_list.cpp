@@ -182,8 +182,20 @@ int list_engine(const std::string& text) {
 }  // namespace
 
 void add_list_commands(CLI::App& app, int* status) {
-  app.add_subcommand("list", "Built-in scenes, their parameters and defaults")->callback([status] {
-    *status = list_scenes();
+  auto suite = std::make_shared<std::string>();
+  CLI::App* list = app.add_subcommand("list", "Built-in scenes, their parameters and defaults");
+  list->add_option("--suite", *suite,
+                   "only the names of a suite's scenes, one a line, in its order: default (what "
+                   "scripts/run.sh runs)")
+      ->check(CLI::IsMember({"default"}));
+  list->callback([status, suite] {
+    if (suite->empty()) {
+      *status = list_scenes();
+      return;
+    }
+    for (const std::string& name : default_suite())
+      std::cout << name << '\n';
+    *status = 0;
   });
   auto spec = std::make_shared<std::string>();
   CLI::App* engines = app.add_subcommand("engines", "Engine specs and their keys");

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The subcommands of the chainbench command. Each adds itself to the app; its callback does the
-// work and leaves the exit status in *status.
+// What the subcommands of the chainbench command share. Each command is a file, cli/cmd_NAME.cpp,
+// that defines add_NAME_command(app, status), listed in main.cpp's command table: it adds itself
+// to the app, and its callback does the work and leaves the exit status in *status.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -9,12 +10,7 @@
 
 namespace chainbench {
 
-void add_list_commands(CLI::App& app, int* status);  // list, engines
-void add_run_command(CLI::App& app, int* status);
-void add_sweep_command(CLI::App& app, int* status);
-void add_stress_command(CLI::App& app, int* status);
-void add_replay_command(CLI::App& app, int* status);
-void add_merge_command(CLI::App& app, int* status);
+using AddCommand = void (*)(CLI::App& app, int* status);
 
 // --engines given empty is a mistake (a shell variable that expanded to nothing), not a request
 // for the defaults: those come from leaving the option out.

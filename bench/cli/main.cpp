@@ -15,18 +15,28 @@
 #include <iostream>
 #include <string>
 
+namespace chainbench {
+
+// The commands, in the order --help lists them; each is defined in its cli/cmd_NAME.cpp.
+void add_list_commands(CLI::App& app, int* status);  // list, engines
+void add_run_command(CLI::App& app, int* status);
+void add_sweep_command(CLI::App& app, int* status);
+void add_stress_command(CLI::App& app, int* status);
+void add_replay_command(CLI::App& app, int* status);
+void add_merge_command(CLI::App& app, int* status);
+constexpr AddCommand kCommands[] = {add_list_commands,  add_run_command,    add_sweep_command,
+                                    add_stress_command, add_replay_command, add_merge_command};
+
+}  // namespace chainbench
+
 int main(int argc, char** argv) {
   CLI::App app{"chainbench: collision chaining against rigid-body engines, in numbers"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "this help and every command's help");
   app.set_version_flag("--version", "chainbench " CHAINBENCH_VERSION);
   int status = 0;
-  chainbench::add_list_commands(app, &status);
-  chainbench::add_run_command(app, &status);
-  chainbench::add_sweep_command(app, &status);
-  chainbench::add_stress_command(app, &status);
-  chainbench::add_replay_command(app, &status);
-  chainbench::add_merge_command(app, &status);
+  for (chainbench::AddCommand add : chainbench::kCommands)
+    add(app, &status);
   // Each command inherits --help-all, but has no commands below it: there it prints what --help
   // does, and says so.
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))

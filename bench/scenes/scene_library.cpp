@@ -37,6 +37,16 @@ const std::vector<SceneRecipe>& scene_library() {
   return library;
 }
 
+const std::vector<std::string>& default_suite() {
+  static const std::vector<std::string> suite = {
+      "stack",          "pyramid",          "many_pyramids", "mass_ratio_stack",
+      "heavy_on_light", "overlap_recovery", "random_pile",   "push_row",
+      "push_into_wall", "push_stack",       "squeeze",       "seed_stack",
+      "seed_squeeze",   "seed_falling_row", "rain",          "smash",
+      "bulldozer",      "spawn_rain"};
+  return suite;
+}
+
 const SceneRecipe* find_recipe(std::string_view name) {
   for (const SceneRecipe& r : scene_library()) {
     if (r.name == name) return &r;

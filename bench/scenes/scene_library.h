@@ -44,6 +44,9 @@ struct SceneRecipe {
 };
 
 const std::vector<SceneRecipe>& scene_library();
+// The default suite: the built-in scenes scripts/run.sh runs and its report lists, in that order
+// (`chainbench list --suite default` prints them). Every name is a recipe of scene_library().
+const std::vector<std::string>& default_suite();
 const SceneRecipe* find_recipe(std::string_view name);
 // The recipe's own parameters, then steps, dt (1/60), friction (0), restitution (0), rotation
 // (0) and offset (0: moves the whole scene that far along x and y), which every scene takes.

@@ -80,3 +80,21 @@ TEST(SceneLibrary, ParameterProductsBeyondTheBodyLimitAreRefusedBeforeBuilding) 
 
 }  // namespace
 }  // namespace chainbench
+
+namespace chainbench {
+namespace {
+
+// The default suite names each scene once, every one a recipe the library builds.
+TEST(SceneLibrary, TheDefaultSuiteNamesRecipesOnce) {
+  const std::vector<std::string>& suite = default_suite();
+  ASSERT_FALSE(suite.empty());
+  for (std::size_t i = 0; i < suite.size(); ++i) {
+    EXPECT_NE(find_recipe(suite[i]), nullptr) << suite[i];
+    for (std::size_t j = 0; j < i; ++j) {
+      EXPECT_NE(suite[i], suite[j]) << "named twice";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace chainbench

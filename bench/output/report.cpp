@@ -53,6 +53,20 @@ std::vector<std::pair<std::string, std::string>> counter_columns(const RunReport
   return columns;
 }
 
+// Every counter name some run's engine declares, once, in the order the runs first declare them.
+std::vector<std::string> counter_column_names(const RunReport& r) {
+  std::vector<std::string> names;
+  auto note = [&](const EngineRun& run) {
+    for (const CounterDef& c : run.counter_defs()) {
+      if (std::find(names.begin(), names.end(), c.name) == names.end()) names.push_back(c.name);
+    }
+  };
+  for (const EngineRun& run : r.runs)
+    note(run);
+  if (r.reference) note(*r.reference);
+  return names;
+}
+
 ordered_json optional_number(const std::optional<double>& v) {
   return v ? json_number(*v) : ordered_json(nullptr);
 }
@@ -510,7 +524,13 @@ void write_run_csv(std::ostream& out, const RunReport& r) {
          "efd_per_body_step,efd_max_step,max_penetration,peak_speed,finite,in_bounds,stable,hash,"
          "resolve_calls,max_depth,budget_hits,crush_events,expect_max_error,expect_max_speed_error,"
          "expect_pass,verdict,"
-         "degraded_steps,tunnelled,escaped,counters\n";
+         "degraded_steps,tunnelled,escaped,counters";
+  // Then every counter any run's engine declares as a column of its own, counter_NAME, in the
+  // order the runs first declare them: empty for a run whose engine has no such counter.
+  const std::vector<std::string> counter_names = counter_column_names(r);
+  for (const std::string& name : counter_names)
+    out << ",counter_" << name;
+  out << '\n';
   auto num = [](const std::optional<double>& v) { return v ? fmt_g(*v, 9) : std::string(); };
   auto flag = [](const std::optional<bool>& v) {
     return v ? std::string(*v ? "1" : "0") : std::string();
@@ -540,7 +560,10 @@ void write_run_csv(std::ostream& out, const RunReport& r) {
     std::string counters;
     for (std::size_t c = 0; c < defs.size() && c < run.counters.size(); ++c)
       counters += (c ? ";" : "") + defs[c].name + '=' + fmt_g(run.counters[c], 9);
-    out << csv_quoted(counters) << '\n';
+    out << csv_quoted(counters);
+    for (const std::string& name : counter_names)
+      out << ',' << num(run.counter(name));
+    out << '\n';
   };
   for (const EngineRun& run : r.runs)
     row(run);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Broadphase: uniform grids over body centres, one per size class, rebuilt by a counting sort at
-// every sweep.
+// every pass.
 //
 // Bodies are split into levels by size: a level takes every remaining body up to 4 times the
 // median size of the remaining movable bodies, and its cells are 2 * (its largest half extent)

@@ -10,19 +10,19 @@ namespace chain::detail {
 namespace {
 
 // How far along the carrier's motion a carried body started: nearer bodies are placed first.
-double ahead(const Bodies& bodies, const SweepResult& r) {
+double ahead(const Bodies& bodies, const SweptPlacement& r) {
   return r.side * bodies.start_pos(r.axis, r.body);
 }
 
 }  // namespace
 
-void Carry::insert_pending(const Bodies& bodies, const std::vector<SweepResult>& results,
+void Carry::insert_pending(const Bodies& bodies, const std::vector<SweptPlacement>& results,
                            std::size_t from, std::uint32_t r) {
   pending_.push_back(r);
   std::size_t at = pending_.size() - 1;
   const double a = ahead(bodies, results[r]);
   while (at > from) {
-    const SweepResult& before = results[pending_[at - 1]];
+    const SweptPlacement& before = results[pending_[at - 1]];
     const double b = ahead(bodies, before);
     if (b < a || (b == a && before.body < results[r].body)) break;
     pending_[at] = pending_[at - 1];
@@ -31,7 +31,7 @@ void Carry::insert_pending(const Bodies& bodies, const std::vector<SweepResult>&
   pending_[at] = r;
 }
 
-void Carry::run(StepContext& ctx, ChainState& state, std::vector<SweepResult>& results) {
+void Carry::run(StepContext& ctx, ChainState& state, std::vector<SweptPlacement>& results) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
   entries_.clear();
@@ -43,7 +43,7 @@ void Carry::run(StepContext& ctx, ChainState& state, std::vector<SweepResult>& r
   for (std::uint32_t i = 0; i < results.size(); ++i)
     result_of_[results[i].body] = i;
   std::sort(entries_.begin(), entries_.end(), [&](std::uint32_t p, std::uint32_t q) {
-    const SweepResult &a = results[p], &b = results[q];
+    const SweptPlacement &a = results[p], &b = results[q];
     if (a.carrier != b.carrier) return a.carrier < b.carrier;
     if (a.axis != b.axis) return a.axis < b.axis;
     if (a.side != b.side) return a.side < b.side;
@@ -53,7 +53,7 @@ void Carry::run(StepContext& ctx, ChainState& state, std::vector<SweepResult>& r
   auto pos = [](const Point& p, int axis) { return axis == 0 ? p.x : p.y; };
   auto set = [](Point& p, int axis, double v) { (axis == 0 ? p.x : p.y) = v; };
   for (std::size_t g0 = 0; g0 < entries_.size();) {
-    const SweepResult& first = results[entries_[g0]];
+    const SweptPlacement& first = results[entries_[g0]];
     const std::uint32_t carrier = first.carrier;
     const int k = first.axis, s = first.side, t = 1 - k;
     std::size_t g1 = g0;
@@ -70,7 +70,7 @@ void Carry::run(StepContext& ctx, ChainState& state, std::vector<SweepResult>& r
       if (!state.crushed(f)) {
         // On whatever it overlaps across the axis that started nearer the carrier.
         for (const std::uint32_t g : placed_) {
-          const SweepResult& below = results[g];
+          const SweptPlacement& below = results[g];
           if (s * (bodies.start_pos(k, below.body) - bodies.start_pos(k, f)) >= 0.0) continue;
           const double across = bodies.half(t, f) + bodies.half(t, below.body) -
                                 std::abs(pos(at, t) - pos(below.position, t));
@@ -82,8 +82,8 @@ void Carry::run(StepContext& ctx, ChainState& state, std::vector<SweepResult>& r
         results[index].position = at;
       }
       placed_.push_back(index);
-      // Dynamic bodies no sweep moved that lie in f's way, from where integration left it to
-      // where it is carried, come along on top of it.
+      // Dynamic bodies continuous collision did not move that lie in f's way, from where
+      // integration left it to where it is carried, come along on top of it.
       const double from = bodies.pos(k, f), to = pos(at, k);
       double centre[2], half[2];
       centre[k] = 0.5 * (from + to);
@@ -114,7 +114,7 @@ void Carry::run(StepContext& ctx, ChainState& state, std::vector<SweepResult>& r
     }
     g0 = g1;
   }
-  for (const SweepResult& r : results)
+  for (const SweptPlacement& r : results)
     result_of_[r.body] = kNone;
 }
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The modern resolver's contacts: finding the overlapping pairs of a sweep, and the order they
+// The modern resolver's contacts: finding the overlapping pairs of a pass, and the order they
 // are resolved in (shock propagation outward from immovable bodies; each body's immovable contacts
 // in the order it entered them).
 #include "chain_resolver.h"
@@ -27,7 +27,7 @@ constexpr std::uint32_t kUnreached = 0xffffffffu;
 // broadphase has examined as many candidates since the scan as the scan (and the build before it)
 // cost: then a new scan, after which none is stale, pays for itself (the rent-or-buy rule, at most
 // twice the work of the best choice made knowing the future; the count takes every query, the
-// sweep's too, which a scan does not save: an upper bound on what the stale bodies cost). A
+// pass's too, which a scan does not save: an upper bound on what the stale bodies cost). A
 // resting pile with one fast body in it neither rebuilds its grid nor rescans its pairs.
 void ChainResolver::gather_contacts(StepContext& ctx) {
   const Bodies& bodies = ctx.bodies;
@@ -36,7 +36,7 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
   if (!fresh_grid_ && near_generation_ == bp.generation() &&
       bp.stale_count() <= bodies.size() / kRescanShare &&
       (bp.stale_count() == 0 || bp.examined() - examined_after_scan_ <= scan_cost_)) {
-    state_.begin_sweep(bodies, nullptr);
+    state_.begin_pass(bodies, nullptr);
   } else {
     const std::uint64_t before = bp.examined();
     if (!fresh_grid_) ctx.broadphase.build(bodies, ctx.dt, ctx.def.gravity);
@@ -46,7 +46,7 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     ctx.broadphase.for_each_near_pair(bodies, [&](std::uint32_t i, std::uint32_t j) {
       push_buffer(near_pairs_, {i, j});
     });
-    state_.begin_sweep(bodies, &near_pairs_);
+    state_.begin_pass(bodies, &near_pairs_);
     examined_after_scan_ = bp.examined();
     scan_cost_ = examined_after_scan_ - before + bodies.size();
   }
@@ -110,7 +110,7 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
   }
 }
 
-// A later sweep can only find the overlaps the last one's chains left behind, and those flagged
+// A later pass can only find the overlaps the last one's chains left behind, and those flagged
 // the bodies involved: the contacts are among the overlaps of those bodies.
 void ChainResolver::gather_suspect_contacts(StepContext& ctx) {
   const Broadphase& bp = ctx.broadphase;
@@ -130,7 +130,7 @@ void ChainResolver::gather_suspect_contacts(StepContext& ctx) {
       push_buffer(contacts_, {std::min(i, j), std::max(i, j)});
     }
   }
-  state_.begin_sweep(bodies, nullptr);
+  state_.begin_pass(bodies, nullptr);
 }
 
 // Levels: immovable bodies 0, dynamic bodies their contact-graph distance from one (breadth

@@ -23,8 +23,8 @@ void ChainResolver::resolve(StepContext& ctx) {
   state_.begin_step(ctx);
   walls_.begin_step(bodies.size());
   ctx.clock.lap(ctx.profile.prepare);
-  fresh_grid_ = sweep_.run(ctx, state_);
-  ctx.clock.lap(ctx.profile.sweep);
+  fresh_grid_ = continuous_.run(ctx, state_);
+  ctx.clock.lap(ctx.profile.continuous);
   state_.leftover = true;
   for (int pass = 0; pass < ctx.def.max_passes && state_.leftover; ++pass) {
     state_.leftover = false;
@@ -158,7 +158,7 @@ bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, dou
     sign = ChainState::away(ctx, push_axis, b, a);
   }
   if (axis != kAnyAxis && push_axis != axis) {
-    state_.flag(a, b);  // an overlap across the chaining axis: the next sweep takes it
+    state_.flag(a, b);  // an overlap across the chaining axis: the next pass takes it
     return false;
   }
   f.chain_axis = static_cast<std::int8_t>(push_axis);
@@ -189,7 +189,7 @@ bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, dou
   const double share = depth_along * (mass_b / (mass_a + mass_b));
   f.moved = ctx.move(a, push_axis, share, follower);
   // Either may stop short at a body in its way (StepContext::move): the rest of the overlap is
-  // left to the chain that body starts, or to the next sweep.
+  // left to the chain that body starts, or to the next pass.
   if (ctx.move(b, push_axis, share - depth_along) != share - depth_along || f.moved != share)
     state_.flag(a, b);
   f.extra = extra;
@@ -223,7 +223,7 @@ bool ChainResolver::next_candidate(StepContext& ctx, Frame& f, std::uint32_t fro
     if (o.x <= tol || o.y <= tol) continue;
     if (!immovable && state_.visited(c)) {
       // Bodies still on the stack follow back when their frame closes; any other body already
-      // in this chain keeps its overlap for the next sweep.
+      // in this chain keeps its overlap for the next pass.
       if (state_.on_stack(c) == 0) state_.flag(from, c);
       continue;
     }

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The modern collision-chaining resolver.
 //
-// Fast bodies are swept first (sweep.h). Then a sweep finds every overlapping pair and resolves
-// them in shock-propagation order: contacts with immovable bodies first (each body's in the order
-// it entered them), then outward by contact-graph distance from them. Resolving a pair starts a
-// chain:
+// Fast bodies are swept first (continuous.h). Then a contact pass finds every overlapping pair and
+// resolves them in shock-propagation order: contacts with immovable bodies first (each body's in
+// the order it entered them), then outward by contact-graph distance from them. Resolving a pair
+// starts a chain:
 //   - against an immovable body, the dynamic body is pushed out through the face it came in
 //     through (entry_face.h), takes the whole push and acts as a wall from then on
 //     (force_static.h); against a body supported from that side, the same along least overlap;
@@ -15,7 +15,7 @@
 //     a's side ends up backed by an immovable body, b's side continues force-static.
 // Chained pushes stay on the axis of the push that caused them (the chaining axis), so a resting
 // contact is never resolved sideways. Each body joins a chain at most once, and a step has a
-// fixed budget of pair resolutions, so work is bounded. Sweeps repeat, up to
+// fixed budget of pair resolutions, so work is bounded. Passes repeat, up to
 // WorldDef::max_passes, only while a chain left overlaps behind.
 //
 // Chains between dynamic bodies run on an explicit stack: a row of 10,000 boxes chains 10,000
@@ -23,9 +23,9 @@
 #pragma once
 
 #include "chain_state.h"
+#include "continuous.h"
 #include "force_static.h"
 #include "step_context.h"
-#include "sweep.h"
 
 #include <cstdint>
 #include <span>
@@ -84,10 +84,10 @@ class ChainResolver {
 
   ChainState state_;
   ForceStatic walls_;
-  Sweep sweep_;
-  // The sweep built the broadphase this step, and its near pairs are not scanned yet.
+  ContinuousCollision continuous_;
+  // Continuous collision built the broadphase this step, and its near pairs are not scanned yet.
   bool fresh_grid_ = false;
-  bool repeat_immovable_ = false;  // some body has several immovable contacts in this sweep
+  bool repeat_immovable_ = false;  // some body has several immovable contacts in this pass
   struct Entry {
     Pair pair;
     double when;

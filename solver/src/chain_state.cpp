@@ -38,17 +38,17 @@ void ChainState::begin_step(StepContext& ctx) {
 
 void ChainState::forget_slots() {
   std::fill(marks_.begin(), marks_.end(), Marks{});
-  stamp_ = step_ = sweep_ = 0;
+  stamp_ = step_ = pass_ = 0;
   suspect_stamp_ = 1;
   suspects_.clear();
   reach_order_.clear();
 }
 
-void ChainState::begin_sweep(const Bodies& bodies, const std::vector<Pair>* near_pairs) {
-  if (++sweep_ == 0) {  // wrapped: forget every old support
+void ChainState::begin_pass(const Bodies& bodies, const std::vector<Pair>* near_pairs) {
+  if (++pass_ == 0) {  // wrapped: forget every old support
     for (Marks& m : marks_)
-      m.support_sweep = 0;
-    sweep_ = 1;
+      m.support_pass = 0;
+    pass_ = 1;
   }
   if (!near_pairs) return;
   const std::uint32_t n = bodies.size();

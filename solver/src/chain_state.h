@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // State the modern resolver's chains share within a step: which bodies a chain has reached,
 // which are supported by the immovable level (and from which side), which are crushed, the near
-// pairs of the sweep, the flags that say whether another sweep is needed, and the order in which
+// pairs of the pass, the flags that say whether another pass is needed, and the order in which
 // the step first reached each body (layout.h renumbers the bodies by it).
 #pragma once
 
@@ -26,8 +26,8 @@ class ChainState {
   void begin_step(StepContext& ctx);
   // Forgets every per-body mark: the slots were renumbered.
   void forget_slots();
-  // Forgets supports (bodies move between sweeps); with `near_pairs`, takes new near pairs.
-  void begin_sweep(const Bodies& bodies, const std::vector<Pair>* near_pairs);
+  // Forgets supports (bodies move between passes); with `near_pairs`, takes new near pairs.
+  void begin_pass(const Bodies& bodies, const std::vector<Pair>* near_pairs);
   // A fresh mark for the next chain.
   void begin_chain();
 
@@ -85,13 +85,13 @@ class ChainState {
   }
   bool supported_towards(int axis, std::uint32_t body, int direction) const {
     const Marks& m = marks_[body];
-    return m.support_sweep == sweep_ && m.support_dir[axis] == direction;
+    return m.support_pass == pass_ && m.support_dir[axis] == direction;
   }
   std::uint32_t support_anchor(std::uint32_t body) const { return marks_[body].support_anchor; }
   void support(int axis, std::uint32_t body, int direction, std::uint32_t anchor) {
     Marks& m = marks_[body];
-    if (m.support_sweep != sweep_) {  // supports of earlier sweeps no longer hold
-      m.support_sweep = sweep_;
+    if (m.support_pass != pass_) {  // supports of earlier passes no longer hold
+      m.support_pass = pass_;
       m.support_dir[0] = m.support_dir[1] = 0;
     }
     m.support_dir[axis] = static_cast<std::int8_t>(direction);
@@ -134,8 +134,8 @@ class ChainState {
     Marks& m = marks_[body];
     m.visited = m.walled = stamp_;
     m.walled_axis = static_cast<std::int8_t>(axis);
-    if (m.support_sweep != sweep_) {
-      m.support_sweep = sweep_;
+    if (m.support_pass != pass_) {
+      m.support_pass = pass_;
       m.support_dir[0] = m.support_dir[1] = 0;
     }
     m.support_dir[axis] = static_cast<std::int8_t>(direction);
@@ -164,7 +164,7 @@ class ChainState {
     return true;
   }
 
-  // A chain left an overlap behind, involving these bodies: the next sweep looks at them again.
+  // A chain left an overlap behind, involving these bodies: the next pass looks at them again.
   void flag(std::uint32_t body) {
     leftover = true;
     if (marks_[body].suspect != suspect_stamp_) {
@@ -177,7 +177,7 @@ class ChainState {
     flag(b);
   }
   bool suspect(std::uint32_t body) const { return marks_[body].suspect == suspect_stamp_; }
-  // The bodies flagged since the sweep began, each once.
+  // The bodies flagged since the pass began, each once.
   const std::vector<std::uint32_t>& suspects() const { return suspects_; }
   void clear_suspects();
 
@@ -193,7 +193,7 @@ class ChainState {
   // needs are those the walk just read, or the next few, which the hardware prefetches.
   static constexpr std::uint32_t kNearSlots = 8;
 
-  bool leftover = false;  // some chain flagged a body: the next sweep must look again
+  bool leftover = false;  // some chain flagged a body: the next pass must look again
   bool cut = false;       // the current chain ran out of budget
 
  private:
@@ -204,9 +204,9 @@ class ChainState {
     std::uint32_t walled = 0;   // stamp of the last chain that placed it as a wall
     std::uint32_t on_stack = 0;
     std::uint32_t reached = 0;               // the last step a chain reached it in
-    std::uint32_t support_sweep = 0;         // the sweep its supports were found in
+    std::uint32_t support_pass = 0;          // the pass its supports were found in
     std::uint32_t support_anchor = kNoSlot;  // the immovable body behind its supports
-    std::uint32_t suspect = 0;               // stamp of the sweep that flagged it
+    std::uint32_t suspect = 0;               // stamp of the pass that flagged it
     std::int8_t support_dir[2] = {0, 0};     // per axis: the direction it is backed in, or 0
     std::int8_t walled_axis = 0;
     bool crushed = false;  // crushed in step `reached`
@@ -225,7 +225,7 @@ class ChainState {
   std::vector<Marks> marks_;
   std::uint32_t stamp_ = 0;
   std::uint32_t step_ = 0;
-  std::uint32_t sweep_ = 0;
+  std::uint32_t pass_ = 0;
   std::vector<std::uint32_t> suspects_;
   mutable std::vector<std::uint32_t> refiled_;  // gather_overlaps_refiled's list for a SlotList
   std::uint32_t suspect_stamp_ = 1;

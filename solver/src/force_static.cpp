@@ -59,12 +59,12 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
       if (o.x <= tol || o.y <= tol) continue;  // a yield may have moved w off it
       if (state.visited(c) && !state.walled(c, axis)) {
         // Bodies held by open frames follow back when their frame closes; any other body already
-        // in this chain keeps its overlap for the next sweep.
+        // in this chain keeps its overlap for the next pass.
         if (state.on_stack(c) == 0) state.flag(w, c);
         continue;
       }
       if (overlap_axis(o) != axis) {
-        state.flag(w, c);  // they meet across the chaining axis: the next sweep takes it
+        state.flag(w, c);  // they meet across the chaining axis: the next pass takes it
         continue;
       }
       // The side c started the step on: a wall lands where its own wall puts it, which may be on
@@ -96,7 +96,7 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
       const WallsOf walls{&state, axis};
       ctx.place(c, axis, flush, kNoSlot, true, &WallsOf::passes, &walls);
       if (p(c) != flush) [[unlikely]] {
-        // Stopped short: not flush, so not a wall this chain can build on; the next sweep
+        // Stopped short: not flush, so not a wall this chain can build on; the next pass
         // resolves what is left.
         state.visit(c);
         state.flag(w, c);
@@ -130,7 +130,7 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
   }
   if (!state.spend(ctx)) return Between::kStop;
   if (!yield(ctx, state, w, c, axis)) {
-    state.flag(w, c);  // a body beyond w keeps it from yielding: the next sweep takes it
+    state.flag(w, c);  // a body beyond w keeps it from yielding: the next pass takes it
     return Between::kNext;
   }
   cands_.clear();  // w moved: look again from its new place

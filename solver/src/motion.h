@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Integration: drives, gravity and positions for one step, and what the rest of the step needs
 // to know about it: where every movable body started (Bodies::start), which bodies moved far for
-// their size (the sweep takes those), and the velocities before push-out (friction weighs contacts
-// by the momentum push-out took).
+// their size (continuous collision takes those), and the velocities before push-out (friction
+// weighs contacts by the momentum push-out took).
 #pragma once
 
 #include "bodies.h"

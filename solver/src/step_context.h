@@ -24,8 +24,8 @@ inline constexpr int kAnyAxis = 2;
 // push-out resolves the pair: push-out separates two boxes along their axis of least overlap, away
 // from each other's centre, so it sends a body back the way it came only while that body has not
 // crossed the other's centre and is less deep along the axis it came in on than across it. The
-// share keeps clear of both edges, so rounding never decides. The sweep stops fast bodies there
-// (sweep.h), and the modern resolver's moves stop there too (StepContext::move).
+// share keeps clear of both edges, so rounding never decides. Continuous collision stops fast
+// bodies there (continuous.h), and the modern resolver's moves stop there too (StepContext::move).
 inline constexpr double kPushOutShare = 0.9;
 // The share of a body's half extent it may move unguarded (StepContext::guarded).
 inline constexpr double kFreeMoveShare = 1.0 - kPushOutShare;

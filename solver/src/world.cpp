@@ -156,7 +156,7 @@ void World::step(double dt) {
                           w.profile,
                           dt};
   if (modern) {
-    w.modern.resolve(ctx);  // laps sweep, contacts and chains itself
+    w.modern.resolve(ctx);  // laps continuous, contacts and chains itself
   } else {
     w.seed2014.resolve(ctx, w.creation_order);
     clock.lap(w.profile.chains);

@@ -44,7 +44,7 @@ TEST(CliProfile, EachEnginesStagesArePrintedAndWrittenWithinItsStep) {
   const nlohmann::ordered_json j = read_json(json);
   const std::vector<std::pair<std::string, std::vector<std::string>>> expected = {
       {"chain:",
-       {"prepare", "integrate", "sweep", "contacts", "chains", "velocity", "friction", "layout"}},
+       {"prepare", "integrate", "continuous", "contacts", "chains", "velocity", "friction", "layout"}},
       {"box2d:", {"collide", "solve", "solve_toi"}}};
   for (const auto& [engine, names] : expected) {
     const nlohmann::ordered_json& run = run_of(j, engine);

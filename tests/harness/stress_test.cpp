@@ -110,7 +110,7 @@ TEST(StressVerdicts, SlowProjectileStopsInTheStack) {
 }
 
 // At 500 m/s (8.3 m a step) the projectile crosses the stack in one step. The modern chain solver
-// sweeps a fast body against the other bodies' motion (solver/src/sweep.h), so it stops against
+// sweeps a fast body against the other bodies' motion (solver/src/continuous.h), so it stops against
 // box2 as the backstop demands; Box2D 2.4 without bullets lets it through box2 as far as the
 // backstop (its continuous collision covers static bodies only): its centre goes into box2 by
 // one face and out by another, a tunnelling, besides the bounds it misses.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Continuous collision (solver/src/sweep.h): no dynamic body passes through a static or kinematic
+// Continuous collision (solver/src/continuous.h): no dynamic body passes through a static or kinematic
 // body at any speed up to kMaxSpeed and any dt, and a fast dynamic body does not pass through the
 // dynamic bodies in its way.
 #include "world_helpers.h"

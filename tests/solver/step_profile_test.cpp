@@ -115,8 +115,8 @@ TEST(StepProfile, TheStageTableCoversEveryFieldButTheTotal) {
       EXPECT_FALSE(kStepStages[i].ms == kStepStages[j].ms) << kStepStages[i].name;
   }
   EXPECT_EQ(sizeof(StepProfile), (std::size(kStepStages) + 1) * sizeof(double));
-  const std::vector<std::string> order = {"prepare", "integrate", "sweep",    "contacts",
-                                          "chains",  "velocity",  "friction", "layout"};
+  const std::vector<std::string> order = {"prepare", "integrate", "continuous", "contacts",
+                                          "chains",  "velocity",  "friction",   "layout"};
   for (std::size_t i = 0; i < order.size(); ++i)
     EXPECT_EQ(kStepStages[i].name, order[i]);
 }

@@ -117,7 +117,7 @@ struct CrushEvent {
 
 // What the last step cost and met. Counts are per step and reset by every step.
 struct StepStats {
-  std::uint32_t passes = 0;         // contact sweeps run (modern; 1 for seed2014)
+  std::uint32_t passes = 0;         // contact passes run (modern; 1 for seed2014)
   std::uint32_t contacts = 0;       // overlapping pairs found by the broadphase, all passes
   std::uint32_t resolve_calls = 0;  // pair resolutions attempted, chained ones included
   std::uint32_t max_depth = 0;      // longest chain of nested resolutions
@@ -126,7 +126,7 @@ struct StepStats {
   std::uint32_t renumbered = 0;     // 1 if the step left its bodies stored in the order it reached
                                     // them, for the next steps' memory access (modern)
   std::uint32_t fast_bodies = 0;    // bodies that moved far for their size, swept (modern)
-  std::uint32_t swept = 0;          // bodies whose motion the sweep cut or slid (modern)
+  std::uint32_t swept = 0;          // bodies whose motion continuous collision cut or slid (modern)
   // Candidate bodies the broadphase examined for all queries and pair scans of the step: the
   // solver's search work, which stays near-linear in bodies plus contacts whatever the step's
   // pushes did (saturates at 2^32 - 1).
@@ -142,16 +142,16 @@ struct StepStats {
 // run, milliseconds (the part Box2D's b2Profile plays). Measured only while the world measures
 // them (World::set_profiling); all zero otherwise.
 struct StepProfile {
-  double prepare = 0.0;    // bodies created or destroyed since the last step filed; flags cleared
-  double integrate = 0.0;  // drives, gravity and motion
-  double sweep = 0.0;      // fast bodies swept along their paths (modern)
-  double contacts = 0.0;   // overlapping pairs gathered and put in order, every pass (modern)
-  double chains = 0.0;     // pushes resolved along chains and walls, every pass (seed2014: all of
-                           // its resolution, which gathers as it goes)
-  double velocity = 0.0;   // the velocity rule
-  double friction = 0.0;   // friction (modern, rough bodies only)
-  double layout = 0.0;     // the step's report filed; bodies renumbered in reach order (modern)
-  double total = 0.0;      // the whole step: the stages and the little between them
+  double prepare = 0.0;     // bodies created or destroyed since the last step filed; flags cleared
+  double integrate = 0.0;   // drives, gravity and motion
+  double continuous = 0.0;  // continuous collision: fast bodies swept along their paths (modern)
+  double contacts = 0.0;    // overlapping pairs gathered and put in order, every pass (modern)
+  double chains = 0.0;      // pushes resolved along chains and walls, every pass (seed2014: all of
+                            // its resolution, which gathers as it goes)
+  double velocity = 0.0;    // the velocity rule
+  double friction = 0.0;    // friction (modern, rough bodies only)
+  double layout = 0.0;      // the step's report filed; bodies renumbered in reach order (modern)
+  double total = 0.0;       // the whole step: the stages and the little between them
 };
 
 // The stages of a StepProfile as a table, in step order (total excluded): what a profile's
@@ -161,10 +161,10 @@ struct StepStage {
   double StepProfile::*ms;
 };
 inline constexpr StepStage kStepStages[] = {
-    {"prepare", &StepProfile::prepare},   {"integrate", &StepProfile::integrate},
-    {"sweep", &StepProfile::sweep},       {"contacts", &StepProfile::contacts},
-    {"chains", &StepProfile::chains},     {"velocity", &StepProfile::velocity},
-    {"friction", &StepProfile::friction}, {"layout", &StepProfile::layout},
+    {"prepare", &StepProfile::prepare},       {"integrate", &StepProfile::integrate},
+    {"continuous", &StepProfile::continuous}, {"contacts", &StepProfile::contacts},
+    {"chains", &StepProfile::chains},         {"velocity", &StepProfile::velocity},
+    {"friction", &StepProfile::friction},     {"layout", &StepProfile::layout},
 };
 
 }  // namespace chain

@@ -43,7 +43,7 @@
 //     a tenth of the pushed body's own half extent along it stops where the body would be 90% of
 //     the way to the centre of a body it meets (across at least half the smaller box), so push-out
 //     never lands a body on or past another's centre, where it would send it on through; what is
-//     left of the overlap is resolved by the chain or the next sweep. Boxes created overlapping
+//     left of the overlap is resolved by the chain or the next pass. Boxes created overlapping
 //     are so pushed apart without one crossing another in a push.
 //
 // The solver depends on the C++ standard library only; this header compiles as C++17 or later.
@@ -99,7 +99,7 @@ struct WorldDef {
   Variant variant = Variant::kModern;
   VelocityRule velocity_rule = VelocityRule::kInelastic;
   Vec2 gravity{0.0, -10.0};  // m/s^2; components finite, |g| <= kMaxGravity
-  // Modern: contact sweeps per step, in [1, 1000]; a sweep runs only while the previous one left
+  // Modern: contact passes per step, in [1, 1000]; a pass runs only while the previous one left
   // overlaps.
   int max_passes = 4;
   // Both variants: pair resolutions allowed per step, per body (plus a fixed 1024), in

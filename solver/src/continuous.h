@@ -47,7 +47,7 @@
 
 namespace chain::detail {
 
-class Sweep {
+class ContinuousCollision {
  public:
   // Sweeps the step's fast bodies (ctx.motion.fast()) and what they may meet. Returns true when
   // it built the broadphase (the first step after the body set changed), and moved bodies since.
@@ -69,14 +69,14 @@ class Sweep {
   // Slides `body` from its start through [0, until] of the step along the immovable bodies in
   // walls_; returns where it ends, and the kinematic body carrying it then, if one is. A body met
   // along one axis from both sides is squeezed: it is reported crushed and stops there.
-  SweepResult slide(StepContext& ctx, ChainState& state, std::uint32_t body, double until);
+  SweptPlacement slide(StepContext& ctx, ChainState& state, std::uint32_t body, double until);
 
   std::vector<std::uint8_t> fast_;  // per slot: moved fast this step
   double slow_reach_ = 0.0;         // the largest move along an axis of a body not fast, m
   std::vector<Pair> pairs_;
   std::vector<std::uint32_t> by_x_;  // fast bodies by the low x of their swept boxes
   std::vector<std::uint32_t> walls_;
-  std::vector<SweepResult> results_;
+  std::vector<SweptPlacement> results_;
   Carry carry_;
 };
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "sweep.h"
+#include "continuous.h"
 
 #include "buffer.h"
 
@@ -91,7 +91,7 @@ double push_out_limit(const Bodies& bodies, std::uint32_t f, std::uint32_t c, co
 
 }  // namespace
 
-bool Sweep::run(StepContext& ctx, ChainState& state) {
+bool ContinuousCollision::run(StepContext& ctx, ChainState& state) {
   const std::span<const std::uint32_t> fast = ctx.motion.fast();
   ctx.stats.fast_bodies = static_cast<std::uint32_t>(fast.size());
   if (fast.empty()) return false;
@@ -126,7 +126,7 @@ bool Sweep::run(StepContext& ctx, ChainState& state) {
     k = end;
   }
   carry_.run(ctx, state, results_);
-  for (const SweepResult& r : results_) {
+  for (const SweptPlacement& r : results_) {
     bodies.pos(0, r.body) = r.position.x;
     bodies.pos(1, r.body) = r.position.y;
     ctx.broadphase.note_move(r.body, r.position.x, r.position.y);
@@ -137,7 +137,7 @@ bool Sweep::run(StepContext& ctx, ChainState& state) {
   return build;
 }
 
-void Sweep::gather_pairs(StepContext& ctx) {
+void ContinuousCollision::gather_pairs(StepContext& ctx) {
   const Bodies& bodies = ctx.bodies;
   pairs_.clear();
   auto add = [&](std::uint32_t i, std::uint32_t j) {
@@ -175,8 +175,8 @@ void Sweep::gather_pairs(StepContext& ctx) {
   }
 }
 
-double Sweep::dynamic_stop(const StepContext& ctx, std::uint32_t f, const Pair* begin,
-                           const Pair* end) const {
+double ContinuousCollision::dynamic_stop(const StepContext& ctx, std::uint32_t f, const Pair* begin,
+                                         const Pair* end) const {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
   double stop = 1.0;
@@ -197,7 +197,8 @@ double Sweep::dynamic_stop(const StepContext& ctx, std::uint32_t f, const Pair* 
   return stop;
 }
 
-SweepResult Sweep::slide(StepContext& ctx, ChainState& state, std::uint32_t f, double until) {
+SweptPlacement ContinuousCollision::slide(StepContext& ctx, ChainState& state, std::uint32_t f,
+                                          double until) {
   Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
   double p[2] = {bodies.start_pos(0, f), bodies.start_pos(1, f)};
@@ -207,7 +208,7 @@ SweepResult Sweep::slide(StepContext& ctx, ChainState& state, std::uint32_t f, d
   int met_side[2] = {0, 0};
   // Where f ends, and the kinematic body pushing it along, if one is.
   auto result = [&] {
-    SweepResult r{f, {p[0], p[1]}};
+    SweptPlacement r{f, {p[0], p[1]}};
     for (int k = 0; k < 2; ++k) {
       const std::uint32_t c = met[k];
       if (c == kNoSlot || c >= bodies.movable_end) continue;
@@ -264,7 +265,7 @@ SweepResult Sweep::slide(StepContext& ctx, ChainState& state, std::uint32_t f, d
     if (ctx.def.velocity_rule == VelocityRule::kZero && vel[f] * first_side < 0.0) vel[f] = 0.0;
     if (met[k] != kNoSlot && met_side[k] == -first_side) {
       state.report_crush(ctx, f, met[k], wall, k);  // pressed into wall by what it met first
-      return SweepResult{f, {p[0], p[1]}};
+      return SweptPlacement{f, {p[0], p[1]}};
     }
     met[k] = wall;
     met_side[k] = first_side;
@@ -272,8 +273,8 @@ SweepResult Sweep::slide(StepContext& ctx, ChainState& state, std::uint32_t f, d
   return result();  // out of slides: it stops where it met the last face
 }
 
-void Sweep::sweep_body(StepContext& ctx, ChainState& state, std::uint32_t f, const Pair* begin,
-                       const Pair* end) {
+void ContinuousCollision::sweep_body(StepContext& ctx, ChainState& state, std::uint32_t f,
+                                     const Pair* begin, const Pair* end) {
   const Bodies& bodies = ctx.bodies;
   const double until = fast_[f] ? dynamic_stop(ctx, f, begin, end) : 1.0;
   // The immovable bodies f may meet: its own candidates, and, when a fast kinematic body may
@@ -303,7 +304,7 @@ void Sweep::sweep_body(StepContext& ctx, ChainState& state, std::uint32_t f, con
     walls_.erase(std::unique(walls_.begin(), walls_.end()), walls_.end());
   }
   if (walls_.empty() && until >= 1.0) return;
-  const SweepResult r = slide(ctx, state, f, until);
+  const SweptPlacement r = slide(ctx, state, f, until);
   if (r.position.x != bodies.x(f) || r.position.y != bodies.y(f) || r.carrier != kNoSlot)
     results_.push_back(r);
 }

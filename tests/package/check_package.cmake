@@ -1,7 +1,7 @@
 # SPDX-License-Identifier: MIT
 # Configures, builds and installs the solver folder on its own (no Box2D, GoogleTest or Google
 # Benchmark anywhere), then configures, builds and runs a consumer project, compiled as C++17,
-# that finds it with find_package(chainbench). Run by ctest (script mode).
+# that finds it with find_package(chain) (and with the first releases' find_package(chainbench)). Run by ctest (script mode).
 foreach(var SOLVER_DIR CONSUMER_DIR WORK_DIR GENERATOR CXX_COMPILER)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "check_package.cmake needs -D${var}=...")
@@ -21,7 +21,7 @@ run(${CMAKE_COMMAND} -S "${SOLVER_DIR}" -B "${WORK_DIR}/solver" -G "${GENERATOR}
     -DCMAKE_BUILD_TYPE=Release "-DCMAKE_CXX_FLAGS_RELEASE=${quick_release}" "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}")
 run(${CMAKE_COMMAND} --build "${WORK_DIR}/solver")
 run(${CMAKE_COMMAND} --install "${WORK_DIR}/solver" --prefix "${prefix}")
-file(GLOB version_file "${prefix}/lib*/cmake/chainbench/chainbenchConfigVersion.cmake")
+file(GLOB version_file "${prefix}/lib*/cmake/chain/chainConfigVersion.cmake")
 file(READ "${version_file}" version_text)
 file(STRINGS "${SOLVER_DIR}/CMakeLists.txt" version_line REGEX "set\\(CHAINBENCH_SOLVER_VERSION")
 string(REGEX MATCH "[0-9]+\\.[0-9]+\\.[0-9]+" solver_version "${version_line}")
@@ -33,4 +33,9 @@ run(${CMAKE_COMMAND} -S "${CONSUMER_DIR}" -B "${WORK_DIR}/build" -G "${GENERATOR
     "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}")
 run(${CMAKE_COMMAND} --build "${WORK_DIR}/build")
 run("${WORK_DIR}/build/consumer")
+run("${WORK_DIR}/build/consumer_old_names")
+file(GLOB library "${prefix}/lib*/libchain.a")
+if(NOT library)
+  message(FATAL_ERROR "the installed library is not libchain.a")
+endif()
 message(STATUS "solver ${solver_version} installed alone; the C++17 consumer built and ran")

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "campaign/sweep.h"
 
+#include "judge/metric_table.h"
 #include "output/report.h"
 #include "output/trace_writer.h"
 #include "support/input_error.h"
@@ -137,20 +138,32 @@ void print_sweep_table(std::ostream& out, const SweepResult& r) {
       << " steps; error against "
       << (r.reference == "expect" ? "the scene's expectations" : r.reference_label)
       << (r.interrupted ? " (interrupted: the points measured so far)" : "") << "\n\n";
-  TextTable t({"engine", "ms/step", "+- ms", "err max m", "err rms m", "EFD/body-step m",
-               "max pen m", "stable", "verdict", "pareto"});
-  auto opt = [](const std::optional<double>& v) { return v ? fmt_g(*v) : std::string("-"); };
+  std::vector<std::string> header = {"engine", "ms/step", "+- ms", "err max m", "err rms m"};
+  for (const MetricDef& def : metric_table()) {
+    if (def.outputs & kSweep) header.push_back(def.column);
+  }
+  header.insert(header.end(), {"stable", "verdict", "pareto"});
+  TextTable t(header);
   for (const SweepPoint& p : r.points) {
     const auto stable = p.run.stable();
     if (p.run.failure) {  // crash or hang: nothing was measured
-      t.add({p.run.spec.label(), "-", "-", "-", "-", "-", "-", "-", to_string(p.run.verdict->worst),
-             ""});
+      std::vector<std::string> row(header.size(), "-");
+      row.front() = p.run.spec.label();
+      row[header.size() - 2] = to_string(p.run.verdict->worst);
+      row.back() = "";
+      t.add(row);
       continue;
     }
-    t.add({p.run.spec.label(), fmt_ms(p.run.timing.median_ms), fmt_ms(p.run.timing.spread_ms),
-           fmt_g(p.error.max), fmt_g(p.error.rms), opt(p.run.metrics.efd_per_body_step),
-           opt(p.run.metrics.max_penetration), stable ? (*stable ? "yes" : "NO") : "-",
-           p.run.verdict ? to_string(p.run.verdict->worst) : "-", p.pareto ? "*" : ""});
+    std::vector<std::string> row = {p.run.spec.label(), fmt_ms(p.run.timing.median_ms),
+                                    fmt_ms(p.run.timing.spread_ms), fmt_g(p.error.max),
+                                    fmt_g(p.error.rms)};
+    for (const MetricDef& def : metric_table()) {
+      if (def.outputs & kSweep) row.push_back(metric_cell(def, def.value(p.run.metrics)));
+    }
+    row.insert(row.end(),
+               {stable ? (*stable ? "yes" : "NO") : "-",
+                p.run.verdict ? to_string(p.run.verdict->worst) : "-", p.pareto ? "*" : ""});
+    t.add(row);
   }
   t.print(out);
 }
@@ -183,9 +196,13 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
       point["ms_spread"] = failed ? ordered_json(nullptr) : ordered_json(p.run.timing.spread_ms);
       point["final_position_error"] = {{"max", json_number(p.error.max)},
                                        {"rms", json_number(p.error.rms)}};
-      point["energy_free_displacement"] =
-          m.efd_per_body_step ? json_number(*m.efd_per_body_step) : nullptr;
-      point["max_penetration"] = m.max_penetration ? json_number(*m.max_penetration) : nullptr;
+      for (const MetricDef& def : metric_table()) {
+        if (!(def.outputs & kSweep)) continue;
+        const std::optional<double> v = def.value(m);
+        point[def.sweep_key] = !v                              ? ordered_json(nullptr)
+                               : def.kind == MetricKind::kFlag ? ordered_json(*v != 0.0)
+                                                               : json_number(*v);
+      }
       const auto stable = p.run.stable();
       point["stable"] = stable ? ordered_json(*stable) : ordered_json(nullptr);
       point["pareto"] = p.pareto;
@@ -201,8 +218,11 @@ nlohmann::ordered_json sweep_json(const std::vector<SweepResult>& results) {
 }
 
 void write_sweep_csv(std::ostream& out, const std::vector<SweepResult>& results) {
-  out << "scene,engine,reference,ms_median,err_max,err_rms,efd_per_body_step,max_penetration,"
-         "stable,pareto,vary,verdict\n";
+  out << "scene,engine,reference,ms_median,err_max,err_rms";
+  for (const MetricDef& def : metric_table()) {
+    if (def.outputs & kSweep) out << ',' << def.name;
+  }
+  out << ",stable,pareto,vary,verdict\n";
   for (const SweepResult& r : results) {
     for (const SweepPoint& p : r.points) {
       const Metrics& m = p.run.metrics;
@@ -215,10 +235,11 @@ void write_sweep_csv(std::ostream& out, const std::vector<SweepResult>& results)
       };
       out << csv_field(r.scene) << ',' << csv_quoted(p.run.engine) << ',' << csv_quoted(r.reference)
           << ',' << figure(p.run.timing.median_ms, 6) << ',' << figure(p.error.max, 9) << ','
-          << figure(p.error.rms, 9) << ','
-          << (m.efd_per_body_step ? fmt_g(*m.efd_per_body_step, 9) : "") << ','
-          << (m.max_penetration ? fmt_g(*m.max_penetration, 9) : "") << ','
-          << (stable ? (*stable ? "1" : "0") : "") << ',' << (p.pareto ? 1 : 0) << ','
+          << figure(p.error.rms, 9);
+      for (const MetricDef& def : metric_table()) {
+        if (def.outputs & kSweep) out << ',' << metric_csv(def, def.value(m));
+      }
+      out << ',' << (stable ? (*stable ? "1" : "0") : "") << ',' << (p.pareto ? 1 : 0) << ','
           << (r.variant ? r.variant->key + "=" + r.variant->text : "") << ','
           << (p.run.verdict ? to_string(p.run.verdict->worst) : "") << '\n';
     }

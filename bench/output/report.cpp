@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "output/report.h"
 
+#include "judge/metric_table.h"
 #include "output/trace_writer.h"
 #include "support/text_table.h"
 
@@ -251,6 +252,55 @@ Asked asked_speed(const RunReport& r) {
   return a;
 }
 
+// What the run JSON writes beside a metric's value (docs/output-formats.md §2.5).
+void metric_details(ordered_json& m, const MetricDef& def, const Scene& s, const Metrics& mt) {
+  const std::string_view name = def.name;
+  if (name == "max_penetration") {
+    if (mt.worst_overlap) {
+      const PairOverlap& w = *mt.worst_overlap;
+      m["worst_overlap"] = {{"bodies", {s.bodies[w.a].name, s.bodies[w.b].name}},
+                            {"depth", json_number(w.depth)},
+                            {"tolerance", json_number(w.tolerance)},
+                            {"step", w.step}};
+    } else {
+      m["worst_overlap"] = nullptr;  // measured: nothing overlapped
+    }
+  } else if (name == "peak_speed") {
+    m["peak_speed_body"] = s.bodies[mt.peak_speed_body].name;
+    m["peak_speed_step"] = mt.peak_speed_step;
+  } else if (name == "speed_bound") {
+    if (!mt.speed_unbounded.empty()) m["speed_unbounded"] = mt.speed_unbounded;
+  } else if (name == "in_bounds") {
+    m["escaped"] = ordered_json::array();
+    for (const std::size_t b : mt.escaped)
+      m["escaped"].push_back(s.bodies[b].name);
+  } else if (name == "tunnelled" && mt.tunnel) {
+    m["tunnelling"] = {{"body", s.bodies[mt.tunnel->body].name},
+                       {"through", s.bodies[mt.tunnel->through].name},
+                       {"step", mt.tunnel->step},
+                       {"count", mt.tunnel_count}};
+  }
+}
+
+// The run's `metrics` block: every metric of the groups measured, as the table orders them.
+ordered_json metrics_json(const Scene& s, const Metrics& mt) {
+  ordered_json m = ordered_json::object();
+  for (const MetricDef& def : metric_table()) {
+    if (!measured(mt, def.group) || *def.json_key == '\0') continue;
+    const std::optional<double> v = def.value(mt);
+    const ordered_json value = !v                              ? ordered_json(nullptr)
+                               : def.kind == MetricKind::kFlag ? ordered_json(*v != 0.0)
+                                                               : json_number(*v);
+    if (*def.json_block == '\0') {
+      m[def.json_key] = value;
+    } else {
+      m[def.json_block][def.json_key] = value;
+    }
+    metric_details(m, def, s, mt);
+  }
+  return m;
+}
+
 ordered_json verdict_json(const Verdict& v) {
   ordered_json findings = ordered_json::array();
   for (const Finding& f : v.findings) {
@@ -301,8 +351,10 @@ void print_run_table(std::ostream& out, const RunReport& r) {
   std::vector<std::string> header = {"engine", "ms/step", "max ms", "x ref"};
   if (expect_m) header.push_back("expect m");
   if (expect_speed) header.push_back("rest m/s");
-  for (const char* h : {"vs ref max m", "vs ref rms m", "EFD/body-step m", "max pen m", "peak m/s"})
-    header.push_back(h);
+  header.insert(header.end(), {"vs ref max m", "vs ref rms m"});
+  for (const MetricDef& def : metric_table()) {
+    if (def.outputs & kRunTable) header.push_back(def.column);
+  }
   for (const auto& column : columns)
     header.push_back(column.first);
   header.insert(header.end(), {"stable", "verdict"});
@@ -322,9 +374,10 @@ void print_run_table(std::ostream& out, const RunReport& r) {
     if (expect_m) row.push_back(expect_cell(run, s, false));
     if (expect_speed) row.push_back(expect_cell(run, s, true));
     row.insert(row.end(), {c ? fmt_g(c->error.max) : (is_reference ? "0" : "-"),
-                           c ? fmt_g(c->error.rms) : (is_reference ? "0" : "-"),
-                           opt(run.metrics.efd_per_body_step), opt(run.metrics.max_penetration),
-                           opt(run.metrics.peak_speed)});
+                           c ? fmt_g(c->error.rms) : (is_reference ? "0" : "-")});
+    for (const MetricDef& def : metric_table()) {
+      if (def.outputs & kRunTable) row.push_back(metric_cell(def, def.value(run.metrics)));
+    }
     for (const auto& column : columns)
       row.push_back(opt(run.counter(column.second)));
     row.push_back(yes_no(run.stable()));
@@ -438,43 +491,7 @@ ordered_json run_json(const RunReport& r) {
         stages[st.name] = json_number(st.ms);
       e["stages_ms"] = std::move(stages);
     }
-    ordered_json m;
-    const Metrics& mt = run.metrics;
-    if (mt.efd_total) {
-      m["energy_free_displacement"] = {{"total", json_number(*mt.efd_total)},
-                                       {"per_body_step", json_number(*mt.efd_per_body_step)},
-                                       {"max_step", json_number(*mt.efd_max_step)}};
-    }
-    if (mt.max_penetration) m["max_penetration"] = json_number(*mt.max_penetration);
-    if (mt.worst_overlap) {
-      const PairOverlap& w = *mt.worst_overlap;
-      m["worst_overlap"] = {{"bodies", {s.bodies[w.a].name, s.bodies[w.b].name}},
-                            {"depth", json_number(w.depth)},
-                            {"tolerance", json_number(w.tolerance)},
-                            {"step", w.step}};
-    } else if (mt.max_penetration) {
-      m["worst_overlap"] = nullptr;  // measured: nothing overlapped
-    }
-    if (mt.peak_speed) {
-      m["peak_speed"] = json_number(*mt.peak_speed);
-      m["peak_speed_body"] = s.bodies[mt.peak_speed_body].name;
-      m["peak_speed_step"] = mt.peak_speed_step;
-      m["speed_bound"] = mt.speed_bound ? json_number(*mt.speed_bound) : ordered_json(nullptr);
-      if (!mt.speed_unbounded.empty()) m["speed_unbounded"] = mt.speed_unbounded;
-      m["finite"] = *mt.finite;
-      m["in_bounds"] = *mt.in_bounds;
-      m["escaped"] = ordered_json::array();
-      for (const std::size_t b : mt.escaped)
-        m["escaped"].push_back(s.bodies[b].name);
-      m["blow_up"] = *mt.blow_up;
-      m["tunnelled"] = *mt.tunnelled;
-      if (mt.tunnel) {
-        m["tunnelling"] = {{"body", s.bodies[mt.tunnel->body].name},
-                           {"through", s.bodies[mt.tunnel->through].name},
-                           {"step", mt.tunnel->step},
-                           {"count", mt.tunnel_count}};
-      }
-    }
+    ordered_json m = metrics_json(s, run.metrics);
     if (const auto stable = run.stable()) m["stable"] = *stable;
     m["hash"] = hex(run.hash);
     e["metrics"] = std::move(m);
@@ -519,12 +536,20 @@ ordered_json run_json(const RunReport& r) {
 }
 
 void write_run_csv(std::ostream& out, const RunReport& r) {
-  out << "scene,engine,bodies,steps,dt,ms_median,ms_mean,ms_p95,ms_p99,ms_max,setup_ms,err_max,err_"
-         "rms,efd_total,"
-         "efd_per_body_step,efd_max_step,max_penetration,peak_speed,finite,in_bounds,stable,hash,"
-         "resolve_calls,max_depth,budget_hits,crush_events,expect_max_error,expect_max_speed_error,"
-         "expect_pass,verdict,"
-         "degraded_steps,tunnelled,escaped,counters";
+  // The metric columns (metric_table()): the first ones after the errors, the later ones after
+  // the run's own figures, where each first appeared.
+  auto metric_columns = [&](std::uint32_t where) {
+    for (const MetricDef& def : metric_table()) {
+      if (def.outputs & where) out << ',' << def.name;
+    }
+  };
+  out << "scene,engine,bodies,steps,dt,ms_median,ms_mean,ms_p95,ms_p99,ms_max,setup_ms,err_max,"
+         "err_rms";
+  metric_columns(kRunCsv);
+  out << ",stable,hash,resolve_calls,max_depth,budget_hits,crush_events,expect_max_error,"
+         "expect_max_speed_error,expect_pass,verdict,degraded_steps";
+  metric_columns(kRunCsvLate);
+  out << ",counters";
   // Then every counter any run's engine declares as a column of its own, counter_NAME, in the
   // order the runs first declare them: empty for a run whose engine has no such counter.
   const std::vector<std::string> counter_names = counter_column_names(r);
@@ -535,6 +560,11 @@ void write_run_csv(std::ostream& out, const RunReport& r) {
   auto flag = [](const std::optional<bool>& v) {
     return v ? std::string(*v ? "1" : "0") : std::string();
   };
+  auto metric_cells = [&](const Metrics& m, std::uint32_t where) {
+    for (const MetricDef& def : metric_table()) {
+      if (def.outputs & where) out << ',' << metric_csv(def, def.value(m));
+    }
+  };
   auto row = [&](const EngineRun& run) {
     const Comparison* c = comparison_of(r, run);
     const Metrics& m = run.metrics;
@@ -543,19 +573,18 @@ void write_run_csv(std::ostream& out, const RunReport& r) {
         << fmt_g(run.timing.median_ms, 6) << ',' << fmt_g(run.timing.mean_ms, 6) << ','
         << fmt_g(run.timing.p95_ms, 6) << ',' << fmt_g(run.timing.p99_ms, 6) << ','
         << fmt_g(run.timing.max_ms, 6) << ',' << fmt_g(run.timing.setup_ms, 6) << ','
-        << (c ? fmt_g(c->error.max, 9) : "") << ',' << (c ? fmt_g(c->error.rms, 9) : "") << ','
-        << num(m.efd_total) << ',' << num(m.efd_per_body_step) << ',' << num(m.efd_max_step) << ','
-        << num(m.max_penetration) << ',' << num(m.peak_speed) << ',' << flag(m.finite) << ','
-        << flag(m.in_bounds) << ',' << flag(run.stable()) << ',' << hex(run.hash) << ',';
+        << (c ? fmt_g(c->error.max, 9) : "") << ',' << (c ? fmt_g(c->error.rms, 9) : "");
+    metric_cells(m, kRunCsv);
+    out << ',' << flag(run.stable()) << ',' << hex(run.hash) << ',';
     // The first CSV's four counter columns, filled by any engine with counters of those names.
     out << num(run.counter("resolve_calls")) << ',' << num(run.counter("max_depth")) << ','
         << num(run.counter("budget_hits")) << ',' << num(run.counter("crush_events"));
     out << ',' << (run.expect ? fmt_g(run.expect->max_error, 9) : "") << ','
         << (run.expect && run.expect->has_speed ? fmt_g(run.expect->max_speed_error, 9) : "") << ','
         << (run.expect ? (run.expect->pass ? "1" : "0") : "") << ','
-        << (run.verdict ? to_string(run.verdict->worst) : "") << ',' << run.degraded_steps << ','
-        << flag(m.tunnelled) << ',' << (m.peak_speed ? std::to_string(m.escaped.size()) : "")
-        << ',';
+        << (run.verdict ? to_string(run.verdict->worst) : "") << ',' << run.degraded_steps;
+    metric_cells(m, kRunCsvLate);
+    out << ',';
     const std::vector<CounterDef>& defs = run.counter_defs();
     std::string counters;
     for (std::size_t c = 0; c < defs.size() && c < run.counters.size(); ++c)

@@ -99,11 +99,22 @@ int run_scene(const RunArgs& a) {
   auto json_out = open_output(a.json, "--json");
   auto csv_out = open_output(a.csv, "--csv");
   auto trace_out = open_output(a.trace, "--trace");
+  const bool dense = a.trace_format == "dense";
+  // The dense trace's metadata goes beside it, FILE.json, unless the trace goes to a device or a
+  // pipe (written directly): there is no file to be beside then.
+  std::unique_ptr<OutputFile> trace_meta_out;
+  if (trace_out && dense && trace_out->written() >= 0)
+    trace_meta_out = open_output(trace_metadata_path(a.trace), "--trace's metadata");
+  if (trace_out && dense && !trace_meta_out) {
+    std::cerr << "chainbench: note: --trace " << a.trace
+              << " is a device or a pipe: its metadata (dt, the engines' specs, the units) is not "
+                 "written; the rows' time column holds step * dt\n";
+  }
   auto replay_out = open_output(a.replay, a.replay_option);
   std::optional<TraceWriter> trace;
   long long trace_kept = -1;  // the trace's bytes up to the end of the last engine that finished
   if (trace_out) {
-    trace.emplace(trace_out->stream(), scene);
+    trace.emplace(trace_out->stream(), scene, dense ? TraceFormat::kDense : TraceFormat::kSparse);
     options.observers.push_back(&*trace);
     trace_kept = trace_out->written();
   }
@@ -129,7 +140,10 @@ int run_scene(const RunArgs& a) {
     EngineRun r = run_engine(scene, spec, options);
     progress.clear();
     if (r.interrupted) return std::nullopt;  // a half run says nothing
-    if (trace_out) trace_kept = trace_out->written();
+    if (trace_out) {
+      trace_kept = trace_out->written();
+      trace->finished();
+    }
     return r;
   };
   // A replay measures every engine from the reference at every step, so the reference runs
@@ -162,9 +176,21 @@ int run_scene(const RunArgs& a) {
     return kInterruptedStatus;
   }
   if (report.interrupted && trace_out && !trace_out->cut_back(trace_kept)) {
-    // Written directly (a pipe): the rows of the run cut short are there; say where they start.
-    trace_out->stream() << "# interrupted: the rows after the last finished engine's are of an "
-                           "engine that did not finish\n";
+    // Written directly (a pipe): the rows of the run cut short are there; say where they start
+    // (in the sparse form's comments; the dense form holds rows only).
+    if (dense) {
+      std::cerr << "chainbench: note: --trace " << a.trace
+                << " was written directly: its last engine's rows are of a run that did not "
+                   "finish\n";
+    } else {
+      trace_out->stream() << "# interrupted: the rows after the last finished engine's are of an "
+                             "engine that did not finish\n";
+    }
+  }
+  if (trace_meta_out) {
+    trace_meta_out->stream()
+        << trace_metadata_json(scene, trace->finished_engines(), report.interrupted).dump(2)
+        << '\n';
   }
   compare(report);
 
@@ -184,7 +210,8 @@ int run_scene(const RunArgs& a) {
     // Too big a page throws; the outputs are then left as they were.
     written = write_replay_page(replay_out->stream(), report, *replay, page);
   }
-  commit_outputs({json_out.get(), csv_out.get(), trace_out.get(), replay_out.get()});
+  commit_outputs(
+      {json_out.get(), csv_out.get(), trace_out.get(), trace_meta_out.get(), replay_out.get()});
   if (replay_out) {
     std::cout << "replay: wrote " << a.replay << " (" << fmt_g(written.bytes / 1e6, 3)
               << " MB; centres to " << fmt_g(written.quantum, 3) << " m, "
@@ -251,9 +278,19 @@ void add_run_command(CLI::App& app, int* status) {
       ->check(non_empty_path("output file"));
   run_app->add_option("--csv", args->csv, "write one CSV row per engine here")
       ->check(non_empty_path("output file"));
+  auto* trace =
+      run_app
+          ->add_option("--trace", args->trace,
+                       "write every body's state after every step here (CSV; dense: its metadata "
+                       "goes beside it, FILE.json)")
+          ->check(non_empty_path("output file"));
   run_app
-      ->add_option("--trace", args->trace, "write every body's state after every step here (CSV)")
-      ->check(non_empty_path("output file"));
+      ->add_option("--trace-format", args->trace_format,
+                   "dense: a row per engine, step and body, as pandas reads it; sparse: a body's "
+                   "row only when it changed, for huge scenes")
+      ->capture_default_str()
+      ->needs(trace)
+      ->check(CLI::IsMember({"dense", "sparse"}));
   auto* replay = run_app
                      ->add_option("--replay", args->replay,
                                   "write a page that plays every engine's run here (HTML, "
@@ -282,9 +319,13 @@ void add_run_command(CLI::App& app, int* status) {
   run_app->callback([args, status, scene, file] {
     if (scene->count() == 0 && file->count() == 0)
       throw InputError("run: give --scene NAME or --scene-file FILE");
+    const std::string trace_meta = args->trace.empty() || args->trace_format != "dense"
+                                       ? std::string()
+                                       : trace_metadata_path(args->trace);
     refuse_clashing_files({{"--json", &args->json},
                            {"--csv", &args->csv},
                            {"--trace", &args->trace},
+                           {"--trace's metadata", &trace_meta},
                            {"--replay", &args->replay}},
                           {{"--scene-file", &args->scene_file}});
     *status = run_scene(*args);

@@ -17,6 +17,7 @@ struct RunArgs {
   int steps = 0;
   double timeout = 0.0;  // seconds an engine run in a child process (plugins) may take; 0: none
   std::string json, csv, trace;
+  std::string trace_format = "dense";  // dense (with FILE.json beside it) or sparse
   std::string replay;                      // the replay page (replay_page.h), or empty
   const char* replay_option = "--replay";  // how the user named it, for messages
   double replay_mb = 20.0;                 // its size limit

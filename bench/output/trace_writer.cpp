@@ -29,13 +29,63 @@ bool same_bits(const std::array<double, 7>& a, const std::array<double, 7>& b) {
   return std::memcmp(a.data(), b.data(), sizeof a) == 0;
 }
 
+// The dense form's columns and their units, in order.
+constexpr std::array<std::pair<const char*, const char*>, 11> kDenseColumns = {{
+    {"engine", "the engine's label (the sidecar gives its full spec)"},
+    {"step", "steps taken: 1 after the first"},
+    {"time", "s: step * dt"},
+    {"body", "the body's name"},
+    {"x", "m: centre"},
+    {"y", "m: centre"},
+    {"vx", "m/s"},
+    {"vy", "m/s"},
+    {"angle", "rad"},
+    {"displacement", "m: the body's energy-free displacement in this step"},
+    {"penetration", "m: the body's deepest overlap after this step"},
+}};
+
 }  // namespace
 
-TraceWriter::TraceWriter(std::ostream& out, const Scene& scene) : out_(out) {
+std::string trace_metadata_path(const std::string& trace_path) {
+  return trace_path + ".json";
+}
+
+nlohmann::ordered_json trace_metadata_json(const Scene& scene,
+                                           const std::vector<EngineSpec>& engines,
+                                           bool interrupted) {
+  nlohmann::ordered_json j;
+  j["schema"] = "chainbench.trace/1";
+  j["format"] = "dense";
+  j["scene"] = {{"name", scene.name},
+                {"bodies", scene.bodies.size()},
+                {"steps", scene.steps},
+                {"dt", scene.dt}};
+  j["rows"] = scene.has_lifetimes() ? "one per engine, step and body in the world at that step"
+                                    : "one per engine, step and body";
+  j["engines"] = nlohmann::ordered_json::array();
+  for (const EngineSpec& spec : engines)
+    j["engines"].push_back({{"label", spec.label()}, {"spec", spec.str()}});
+  j["interrupted"] = interrupted;
+  j["columns"] = nlohmann::ordered_json::array();
+  for (const auto& [name, meaning] : kDenseColumns)
+    j["columns"].push_back({{"name", name}, {"meaning", meaning}});
+  return j;
+}
+
+TraceWriter::TraceWriter(std::ostream& out, const Scene& scene, TraceFormat format)
+    : format_(format), out_(out) {
+  for (const SceneBody& b : scene.bodies)
+    names_.push_back(csv_field(b.name));
+  line_.reserve(256);
+  if (format_ == TraceFormat::kDense) {
+    for (std::size_t c = 0; c < kDenseColumns.size(); ++c)
+      out_ << (c ? "," : "") << kDenseColumns[c].first;
+    out_ << '\n';
+    return;
+  }
   out_ << "engine,step,body,x,y,vx,vy,angle,displacement,penetration\n"
        << "# chainbench trace 2: a body's row is written at step 1 and then when a value in it "
           "changes; a missing row repeats the body's previous row\n";
-  line_.reserve(256);
   append_exact_number(line_, scene.dt);
   out_ << "# dt " << line_ << " s (time = step * dt)\n"
        << "# steps " << scene.steps << " (rows after an engine's last row repeat it)\n";
@@ -43,18 +93,44 @@ TraceWriter::TraceWriter(std::ostream& out, const Scene& scene) : out_(out) {
     out_ << "# bodies come and go: a body has rows only while it is in the world, the first at the "
             "state it enters in; a row with its values empty says it left in the step before\n";
   }
-  for (const SceneBody& b : scene.bodies)
-    names_.push_back(csv_field(b.name));
 }
 
 void TraceWriter::begin(const EngineSpec& spec, std::span<const CounterDef>) {
+  specs_.push_back(spec);
   label_ = csv_field(spec.label());
-  out_ << "# engine " << spec.label() << " = " << spec.str() << '\n';
+  if (format_ == TraceFormat::kSparse)
+    out_ << "# engine " << spec.label() << " = " << spec.str() << '\n';
   last_.assign(names_.size(), Row{});
   shown_.assign(names_.size(), 0);
 }
 
+void TraceWriter::observe_dense(const StepView& v) {
+  const BodyState& s = *v.state;
+  std::string prefix = label_;
+  prefix += ',';
+  prefix += std::to_string(v.step);
+  prefix += ',';
+  append_exact_number(prefix, v.time);
+  prefix += ',';
+  for (std::size_t i = 0; i < s.position.size(); ++i) {
+    if (!v.present.empty() && !v.present[i]) continue;  // out of the world: no state, no row
+    line_ = prefix;
+    line_ += names_[i];
+    for (const double value : {s.position[i].x, s.position[i].y, s.velocity[i].x, s.velocity[i].y,
+                               s.angle[i], v.displacement[i], v.penetration[i]}) {
+      line_ += ',';
+      append_exact_number(line_, value);
+    }
+    line_ += '\n';
+    out_ << line_;
+  }
+}
+
 void TraceWriter::observe(const StepView& v) {
+  if (format_ == TraceFormat::kDense) {
+    observe_dense(v);
+    return;
+  }
   const BodyState& s = *v.state;
   auto start = [&](std::size_t i) {
     line_ = label_;

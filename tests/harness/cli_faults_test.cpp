@@ -176,7 +176,13 @@ TEST(CliFaults, CtrlCInRunWritesOnlyFinishedEnginesToTraceAndReplay) {
   EXPECT_GT(rows, 0u);
   const std::string page = chainbench::test::read_file(dir + "r.html");
   EXPECT_NE(page.find("\"interrupted\":true"), std::string::npos);
-  EXPECT_EQ(leftovers(dir, {"t.csv", "r.html", "log", "mark"}), std::vector<std::string>{});
+  // The trace's metadata lists the engine that finished, and says the run was interrupted.
+  const std::string meta = chainbench::test::read_file(dir + "t.csv.json");
+  EXPECT_NE(meta.find("\"interrupted\": true"), std::string::npos) << meta;
+  EXPECT_NE(meta.find("\"label\": \"chain\""), std::string::npos) << meta;
+  EXPECT_EQ(meta.find("hang"), std::string::npos) << meta;
+  EXPECT_EQ(leftovers(dir, {"t.csv", "t.csv.json", "r.html", "log", "mark"}),
+            std::vector<std::string>{});
 }
 
 // Ctrl-C before anything finished leaves every previous output as it was (exit 130), in run,

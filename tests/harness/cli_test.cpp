@@ -92,9 +92,10 @@ TEST(Cli, RunWritesTheDesignJsonAndNothingMovesAgainstAWall) {
 }
 
 TEST(Cli, CsvAndTraceAreWritten) {
+  std::filesystem::remove(temp("s.trace.csv") + ".json");
   const Result r =
       chainbench("run --scene squeeze --set steps=10 --engines chain --reference none --csv " +
-                 temp("s.csv") + " --trace " + temp("s.trace.csv"));
+                 temp("s.csv") + " --trace " + temp("s.trace.csv") + " --trace-format sparse");
   ASSERT_EQ(r.status, 0) << r.out;
   std::ifstream csv(temp("s.csv")), trace(temp("s.trace.csv"));
   std::string header, row;
@@ -118,6 +119,43 @@ TEST(Cli, CsvAndTraceAreWritten) {
   // The lift descends every step; the ground and the box stay put and are written once.
   EXPECT_EQ(lift, 10);
   EXPECT_EQ(others, 2);
+  EXPECT_FALSE(std::filesystem::exists(temp("s.trace.csv") + ".json"))
+      << "the sparse form keeps its metadata in its comments";
+}
+
+// The dense trace (the default): a row per step and body, and its metadata in FILE.json.
+TEST(Cli, TheDenseTraceHasEveryRowAndItsMetadataBesideIt) {
+  const std::string path = temp("d.trace.csv");
+  const Result r = chainbench(
+      "run --scene squeeze --set steps=10 --engines chain,box2d "
+      "--reference none --trace " +
+      path);
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream trace(path);
+  std::string header;
+  std::getline(trace, header);
+  EXPECT_EQ(header, "engine,step,time,body,x,y,vx,vy,angle,displacement,penetration");
+  int rows = 0;
+  for (std::string l; std::getline(trace, l);) {
+    ++rows;
+    EXPECT_NE(l[0], '#') << l;
+  }
+  EXPECT_EQ(rows, 2 * 10 * 3);  // two engines, ten steps, three bodies
+  std::ifstream meta_file(path + ".json");
+  ASSERT_TRUE(meta_file) << "no " << path << ".json";
+  const nlohmann::json meta = nlohmann::json::parse(meta_file);
+  EXPECT_EQ(meta["schema"], "chainbench.trace/1");
+  EXPECT_EQ(meta["scene"]["name"], "squeeze");
+  EXPECT_EQ(meta["scene"]["steps"], 10);
+  ASSERT_EQ(meta["engines"].size(), 2u);
+  EXPECT_EQ(meta["engines"][0]["label"], "chain");
+  EXPECT_EQ(meta["engines"][1]["label"], "box2d");
+  EXPECT_EQ(meta["interrupted"], false);
+  // The sidecar is an output like the others: it may not overwrite another.
+  const Result clash =
+      chainbench("run --scene squeeze --set steps=2 --trace " + path + " --json " + path + ".json");
+  EXPECT_EQ(clash.status, 2);
+  EXPECT_NE(clash.out.find("--trace's metadata both name"), std::string::npos) << clash.out;
 }
 
 // Large bad inputs are refused as small ones are (a message, exit 2), with what they echo cut

@@ -82,10 +82,10 @@ std::map<std::string, std::vector<std::pair<int, bool>>> trace_rows(const std::s
   return rows;
 }
 
-TEST(LifetimesOutput, TheTraceShowsABodyOnlyWhileItIsInTheWorld) {
+TEST(LifetimesOutput, TheSparseTraceShowsABodyOnlyWhileItIsInTheWorld) {
   const Scene scene = parse_scene(kScene, "goings.json");
   std::ostringstream out;
-  TraceWriter trace(out, scene);
+  TraceWriter trace(out, scene, TraceFormat::kSparse);
   RunOptions options;
   options.observers.push_back(&trace);
   run_engine(scene, parse_engine_spec("chain"), options);
@@ -109,6 +109,51 @@ TEST(LifetimesOutput, TheTraceShowsABodyOnlyWhileItIsInTheWorld) {
   // keep: never gone.
   for (const auto& [step, empty] : rows.at("keep"))
     EXPECT_FALSE(empty) << step;
+}
+
+// The dense trace: a row for every body in the world at every step, and none for a body out of
+// it (no empty rows: a row is a state); the sidecar says so.
+TEST(LifetimesOutput, TheDenseTraceHasARowForEveryBodyInTheWorldAtEveryStep) {
+  const Scene scene = parse_scene(kScene, "goings.json");
+  std::ostringstream out;
+  TraceWriter trace(out, scene);
+  RunOptions options;
+  options.observers.push_back(&trace);
+  run_engine(scene, parse_engine_spec("chain"), options);
+  trace.finished();
+  std::istringstream in(out.str());
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "engine,step,time,body,x,y,vx,vy,angle,displacement,penetration");
+  std::map<std::string, std::vector<int>> steps;
+  while (std::getline(in, line)) {
+    ASSERT_NE(line[0], '#') << "a comment in the dense form";
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');)
+      f.push_back(v);
+    ASSERT_EQ(f.size(), 11u) << line;
+    EXPECT_EQ(std::stod(f[2]), std::stoi(f[1]) * scene.dt) << line;  // time = step * dt
+    steps[f[3]].push_back(std::stoi(f[1]));
+  }
+  auto range = [](int from, int to) {
+    std::vector<int> v;
+    for (int k = from; k <= to; ++k)
+      v.push_back(k);
+    return v;
+  };
+  EXPECT_EQ(steps["ground"], range(1, 60));
+  EXPECT_EQ(steps["keep"], range(1, 60));
+  EXPECT_EQ(steps["late"], range(30, 60));   // from the state it enters in
+  EXPECT_EQ(steps["leaver"], range(1, 40));  // to_step 40: in state 40, not after
+  const nlohmann::json meta =
+      nlohmann::json::parse(trace_metadata_json(scene, trace.finished_engines(), false).dump());
+  EXPECT_EQ(meta["schema"], "chainbench.trace/1");
+  EXPECT_EQ(meta["rows"], "one per engine, step and body in the world at that step");
+  EXPECT_EQ(meta["scene"]["dt"], scene.dt);
+  ASSERT_EQ(meta["engines"].size(), 1u);
+  EXPECT_EQ(meta["engines"][0]["spec"], parse_engine_spec("chain").str());
+  EXPECT_EQ(meta["columns"].size(), 11u);
 }
 
 TEST(LifetimesOutput, TheReplayPageCarriesTheLivesAndStoresNothingForAnAbsentBody) {

@@ -83,7 +83,7 @@ TEST(Runner, ExpectationsPassOrFailPerEngine) {
 TEST(Runner, TraceWritesChangedRowsOnlyAndTheSpecOnce) {
   const Scene s = make_scene("push_into_wall", {"n=3", "steps=5"});
   std::ostringstream out;
-  TraceWriter trace(out, s);
+  TraceWriter trace(out, s, TraceFormat::kSparse);
   RunOptions options;
   options.observers.push_back(&trace);
   run_engine(s, parse_engine_spec("chain:velocity=zero"), options);
@@ -114,7 +114,7 @@ TEST(Runner, TraceWritesChangedRowsOnlyAndTheSpecOnce) {
 TEST(Runner, TraceWritesEveryStepOfAMovingBodyInFullPrecision) {
   const Scene s = make_scene("push_row", {"n=2", "steps=4"});
   std::ostringstream out;
-  TraceWriter trace(out, s);
+  TraceWriter trace(out, s, TraceFormat::kSparse);
   RunOptions options;
   options.observers.push_back(&trace);
   const EngineRun run = run_engine(s, parse_engine_spec("chain"), options);

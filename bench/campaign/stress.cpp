@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "campaign/stress.h"
 
+#include "judge/metric_table.h"
 #include "output/report.h"
 #include "run/runner.h"
 #include "scenes/scene_library.h"
@@ -19,13 +20,15 @@ namespace {
 // What a child reports back through its pipe: plain data of a fixed size.
 constexpr std::size_t kMaxCounters = 16;
 struct Summary {
-  double max_penetration, peak_speed, speed_bound, ms_per_step;
+  double ms_per_step;
+  double metrics[kMaxMetrics];  // metric_table()'s, in its order
+  std::uint8_t measured[kMaxMetrics];
   double counters[kMaxCounters];
   char counter_names[kMaxCounters][32];
   char counter_columns[kMaxCounters][16];
   std::uint64_t degraded_steps;
   std::uint32_t counter_count;
-  std::uint8_t finite, in_bounds, blow_up, tunnelled, expect_pass, judged, near_miss;
+  std::uint8_t expect_pass, judged, near_miss;
   char detail[480];
   char error[240];
 };
@@ -38,12 +41,13 @@ Summary summarize_case(const StressCase& c, const EngineSpec& engine) {
     options.step_mark = child_mark();  // for a crash to say where
     const EngineRun run = run_engine(scene, engine, options);
     const Metrics& m = run.metrics;
-    s.max_penetration = *m.max_penetration;
-    s.peak_speed = *m.peak_speed;
-    s.speed_bound = m.speed_bound.value_or(HUGE_VAL);
+    const std::span<const MetricDef> table = metric_table();
+    for (std::size_t k = 0; k < table.size(); ++k) {
+      const std::optional<double> v = table[k].value(m);
+      s.metrics[k] = v.value_or(0.0);
+      s.measured[k] = v.has_value();
+    }
     s.ms_per_step = run.timing.median_ms;
-    s.finite = *m.finite, s.in_bounds = *m.in_bounds, s.blow_up = *m.blow_up;
-    s.tunnelled = *m.tunnelled;
     s.expect_pass = !run.expect || run.expect->pass;
     s.degraded_steps = run.degraded_steps;
     s.counter_count = static_cast<std::uint32_t>(std::min(run.counters.size(), kMaxCounters));
@@ -210,11 +214,21 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
   v.judged = static_cast<VerdictClass>(s.judged);
   v.detail = s.detail;
   v.near_miss = s.near_miss != 0;
-  v.max_penetration = s.max_penetration, v.peak_speed = s.peak_speed, v.speed_bound = s.speed_bound;
+  const std::span<const MetricDef> table = metric_table();
+  for (std::size_t k = 0; k < table.size(); ++k)
+    v.metrics.push_back(s.measured[k] ? std::optional<double>(s.metrics[k]) : std::nullopt);
+  // The figures the verdict's logic reads by name.
+  auto metric = [&](const char* name) {
+    const std::optional<double>& value =
+        v.metrics[static_cast<std::size_t>(find_metric(name) - table.data())];
+    return value.value_or(0.0);
+  };
+  v.max_penetration = metric("max_penetration");
+  v.finite = metric("finite") != 0.0, v.in_bounds = metric("in_bounds") != 0.0;
+  v.blow_up = metric("blow_up") != 0.0, v.tunnelled = metric("tunnelled") != 0.0;
   v.ms_per_step = s.ms_per_step;
-  v.finite = s.finite, v.in_bounds = s.in_bounds, v.blow_up = s.blow_up;
   v.known_failure = known_failure(engine, v.case_label, to_string(v.verdict()));
-  v.tunnelled = s.tunnelled, v.expect_pass = s.expect_pass;
+  v.expect_pass = s.expect_pass;
   v.degraded_steps = s.degraded_steps;
   for (std::uint32_t k = 0; k < s.counter_count && k < kMaxCounters; ++k)
     v.counters.push_back({s.counter_names[k], s.counter_columns[k], s.counters[k]});
@@ -236,7 +250,10 @@ void print_stress_table(std::ostream& out, const std::vector<StressVerdict>& ver
     }
     return std::string("-");
   };
-  std::vector<std::string> header = {"case", "engine", "verdict", "max pen m", "peak m/s"};
+  std::vector<std::string> header = {"case", "engine", "verdict"};
+  for (const MetricDef& def : metric_table()) {
+    if (def.outputs & kStressTable) header.push_back(def.column);
+  }
   header.insert(header.end(), columns.begin(), columns.end());
   header.insert(header.end(), {"ms/step", "wall s", "why"});
   TextTable t(header);
@@ -244,9 +261,12 @@ void print_stress_table(std::ostream& out, const std::vector<StressVerdict>& ver
     const bool done = v.finished && v.error.empty();
     std::string verdict = to_string(v.verdict());
     if (!v.known_failure.empty()) verdict += " (known)";
-    std::vector<std::string> row = {v.case_label, v.engine.label(), verdict,
-                                    done ? fmt_g(v.max_penetration) : "-",
-                                    done ? fmt_g(v.peak_speed) : "-"};
+    std::vector<std::string> row = {v.case_label, v.engine.label(), verdict};
+    const std::span<const MetricDef> table = metric_table();
+    for (std::size_t k = 0; k < table.size(); ++k) {
+      if (table[k].outputs & kStressTable)
+        row.push_back(done ? metric_cell(table[k], v.metric(k)) : "-");
+    }
     for (const std::string& column : columns)
       row.push_back(done ? counter_cell(v, column) : "-");
     row.insert(row.end(),
@@ -294,11 +314,21 @@ nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, b
     c["fatal"] = v.fatal();
     if (!v.known_failure.empty()) c["known_failure"] = v.known_failure;
     c["finished"] = v.finished;
+    const std::span<const MetricDef> table = metric_table();
+    // The metrics the stress JSON shows (metric_table(): kStressJson): flags here, figures after
+    // the counters, as the first stress JSON had them.
+    auto metrics = [&](bool flags) {
+      for (std::size_t k = 0; k < table.size(); ++k) {
+        const MetricDef& def = table[k];
+        if (!(def.outputs & kStressJson) || (def.kind == MetricKind::kFlag) != flags) continue;
+        const std::optional<double> value = v.metric(k);
+        c[def.json_key] = !value  ? nlohmann::ordered_json(nullptr)
+                          : flags ? nlohmann::ordered_json(*value != 0.0)
+                                  : json_number(*value);
+      }
+    };
     if (v.finished) {
-      c["finite"] = v.finite;
-      c["in_bounds"] = v.in_bounds;
-      c["blow_up"] = v.blow_up;
-      c["tunnelled"] = v.tunnelled;
+      metrics(true);
       c["expect_pass"] = v.expect_pass;
       c["near_miss"] = v.near();
       c["degraded_steps"] = v.degraded_steps;
@@ -309,9 +339,7 @@ nlohmann::ordered_json stress_json(const std::vector<StressVerdict>& verdicts, b
       for (const char* legacy : {"budget_hits", "crush_events"})
         c[legacy] = counters.contains(legacy) ? counters[legacy] : nlohmann::ordered_json(nullptr);
       c["counters"] = std::move(counters);
-      c["max_penetration"] = json_number(v.max_penetration);
-      c["peak_speed"] = json_number(v.peak_speed);
-      c["speed_bound"] = json_number(v.speed_bound);
+      metrics(false);
       c["ms_per_step"] = json_number(v.ms_per_step);
     }
     if (v.signal) c["signal"] = v.signal;

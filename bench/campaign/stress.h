@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -50,7 +51,13 @@ struct StressVerdict {
     double value;
   };
   std::vector<Counter> counters;  // the engine's counters over the run (engine.h)
-  double max_penetration = 0.0, peak_speed = 0.0, speed_bound = 0.0;
+  // The run's metrics, one per row of metric_table() in its order (empty: not measured, or
+  // not finished; metric(k) reads them).
+  std::vector<std::optional<double>> metrics;
+  std::optional<double> metric(std::size_t k) const {
+    return k < metrics.size() ? metrics[k] : std::nullopt;
+  }
+  double max_penetration = 0.0;  // the metric of that name (0 when not finished)
   double ms_per_step = 0.0, wall_s = 0.0;
   std::string known_failure;  // the reason, when this case and engine are a known failure
   std::string skipped;        // why the engine could not run the case (it was not run)

@@ -31,29 +31,31 @@ const MetricDef kMetrics[] = {
     {"max_penetration", MetricGroup::kPenetration, MetricKind::kNumber, "m",
      "largest after any step", "lower is better; each pair is judged against its tolerance",
      "deepest overlap of any pair (at least one dynamic), along the axis of least penetration", "",
-     "max_penetration", "max pen m", "max_penetration", kRunCsv | kRunTable | kSweep,
+     "max_penetration", "max pen m", "max_penetration",
+     kRunCsv | kRunTable | kSweep | kStressJson | kStressTable,
      [](const Metrics& m) { return m.max_penetration; }},
     {"peak_speed", MetricGroup::kStability, MetricKind::kNumber, "m/s", "largest of any body-step",
      "at most `speed_bound`", "fastest displacement of a body in one step / dt, from positions", "",
-     "peak_speed", "peak m/s", "", kRunCsv | kRunTable,
+     "peak_speed", "peak m/s", "", kRunCsv | kRunTable | kStressJson | kStressTable,
      [](const Metrics& m) { return m.peak_speed; }},
     {"speed_bound", MetricGroup::kStability, MetricKind::kNumber, "m/s",
      "the scene's: the largest of its bodies' bounds", "a bound, not a score",
      "the largest per-body speed the scene allows; null when the scene bounds none", "",
-     "speed_bound", "", "", 0, [](const Metrics& m) { return m.speed_bound; }},
+     "speed_bound", "", "", kStressJson, [](const Metrics& m) { return m.speed_bound; }},
     {"finite", MetricGroup::kStability, MetricKind::kFlag, "", "every body-step", "true is right",
-     "every position and velocity stayed finite", "", "finite", "", "", kRunCsv,
+     "every position and velocity stayed finite", "", "finite", "", "", kRunCsv | kStressJson,
      [](const Metrics& m) { return flag(m.finite); }},
     {"in_bounds", MetricGroup::kStability, MetricKind::kFlag, "", "every body at the end",
      "true is right", "no body ended farther from its start than the scene can send it", "",
-     "in_bounds", "", "", kRunCsv, [](const Metrics& m) { return flag(m.in_bounds); }},
+     "in_bounds", "", "", kRunCsv | kStressJson,
+     [](const Metrics& m) { return flag(m.in_bounds); }},
     {"blow_up", MetricGroup::kStability, MetricKind::kFlag, "",
      "any body over any stretch of steps", "false is right",
      "some body travelled, over some stretch of steps, more than its speed bound allows", "",
-     "blow_up", "", "", 0, [](const Metrics& m) { return flag(m.blow_up); }},
+     "blow_up", "", "", kStressJson, [](const Metrics& m) { return flag(m.blow_up); }},
     {"tunnelled", MetricGroup::kStability, MetricKind::kFlag, "", "any pair over any step",
-     "false is right", "a body passed through another", "", "tunnelled", "", "", kRunCsvLate,
-     [](const Metrics& m) { return flag(m.tunnelled); }},
+     "false is right", "a body passed through another", "", "tunnelled", "", "",
+     kRunCsvLate | kStressJson, [](const Metrics& m) { return flag(m.tunnelled); }},
     {"escaped", MetricGroup::kStability, MetricKind::kCount, "", "bodies at the end", "0 is right",
      "bodies that ended farther from their start than the scene can send them", "", "", "", "",
      kRunCsvLate,
@@ -107,6 +109,8 @@ bool measured(const Metrics& m, MetricGroup group) {
   }
   return false;
 }
+
+static_assert(std::size(kMetrics) <= kMaxMetrics, "a stress child's record holds kMaxMetrics");
 
 std::span<const MetricDef> metric_table() {
   return kMetrics;

@@ -28,10 +28,13 @@ enum class MetricKind { kNumber, kFlag, kCount };
 
 // Where a figure is shown, beside the run JSON's `metrics` block that holds every one.
 enum MetricOutput : std::uint32_t {
-  kRunCsv = 1u << 0,      // a column of the run CSV, among the first metric columns
-  kRunCsvLate = 1u << 1,  // a column of the run CSV after the run's own figures (a later column)
-  kRunTable = 1u << 2,    // a column of `chainbench run`'s table
-  kSweep = 1u << 3,       // a column of the sweep's table and CSV, a key of its JSON points
+  kRunCsv = 1u << 0,       // a column of the run CSV, among the first metric columns
+  kRunCsvLate = 1u << 1,   // a column of the run CSV after the run's own figures (a later column)
+  kRunTable = 1u << 2,     // a column of `chainbench run`'s table
+  kSweep = 1u << 3,        // a column of the sweep's table and CSV, a key of its JSON points
+  kStressJson = 1u << 4,   // a key of each stress case (flags with the run's flags, figures after
+                           // its counters)
+  kStressTable = 1u << 5,  // a column of the stress table
 };
 
 struct MetricDef {
@@ -53,6 +56,8 @@ struct MetricDef {
 
 // Every metric, in the order the run JSON writes them.
 std::span<const MetricDef> metric_table();
+// Most rows the table may hold (a stress case's child sends them back in a fixed-size record).
+inline constexpr std::size_t kMaxMetrics = 32;
 // The row named `name` (MetricDef::name); nullptr when there is none.
 const MetricDef* find_metric(const std::string& name);
 

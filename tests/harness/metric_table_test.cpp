@@ -3,6 +3,7 @@
 // whole, the docs' table is the one it writes, and the run JSON, the run CSV and the run table
 // hold every row where the row says, and nothing of a group the run did not measure.
 #include "judge/metric_table.h"
+#include "campaign/stress.h"
 #include "output/report.h"
 #include "run/runner.h"
 #include "scenes/scene_library.h"
@@ -101,6 +102,30 @@ TEST(MetricTable, EachOutputHoldsTheRowsTheTablePutsThere) {
       if (def.outputs & kRunTable) {
         EXPECT_NE(table_header.find(def.column), std::string::npos) << table_header;
       }
+    }
+  }
+}
+
+// A stress case's JSON and table row hold the rows the table gives them, flags as flags.
+TEST(MetricTable, StressShowsTheRowsTheTablePutsThere) {
+  StressVerdict v;
+  v.finished = true;
+  v.case_label = "case";
+  v.engine = parse_engine_spec("chain");
+  for (const MetricDef& def : metric_table())
+    v.metrics.push_back(def.kind == MetricKind::kFlag ? 1.0 : 0.25);
+  const nlohmann::ordered_json c = stress_json({v}, true)["cases"][0];
+  std::ostringstream table;
+  print_stress_table(table, {v});
+  for (const MetricDef& def : metric_table()) {
+    SCOPED_TRACE(def.name);
+    EXPECT_EQ(c.contains(def.json_key), (def.outputs & kStressJson) != 0);
+    if (def.outputs & kStressJson) {
+      EXPECT_EQ(c[def.json_key], def.kind == MetricKind::kFlag ? nlohmann::ordered_json(true)
+                                                               : nlohmann::ordered_json(0.25));
+    }
+    if (def.outputs & kStressTable) {
+      EXPECT_NE(table.str().find(def.column), std::string::npos) << table.str();
     }
   }
 }

@@ -1,29 +1,41 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Turns chainbench_bench's JSON (--benchmark_format=json) into the README's results tables.
+"""Turns chainbench_bench's JSON (--benchmark_format=json) into the results tables.
 
-    scripts/bench_table.py results/bench.json                 print the tables
-    scripts/bench_table.py results/bench.json --readme README.md
-                                                              also replace the text between
+    scripts/bench_table.py results/bench.json                 print the full tables
+    scripts/bench_table.py results/bench.json --readme README.md --results docs/results.md
+                                                              also write the compact headline
+                                                              table between README.md's
                                                               <!-- results:begin --> and
-                                                              <!-- results:end --> in README.md
+                                                              <!-- results:end --> markers, and
+                                                              the full tables between the same
+                                                              markers in docs/results.md (a new
+                                                              file is written whole)
     scripts/bench_table.py results/bench.json --accuracy build/bin/chainbench --runs DIR
                                                               first run each row's scene in every
                                                               engine it was timed in (chainbench
                                                               run), so that each row shows its
                                                               error beside its speed
+    scripts/bench_table.py results/bench.json --reuse-runs --runs DIR
+                                                              read those runs as an earlier
+                                                              --accuracy left them in DIR instead
+                                                              (with --accuracy too: run only the
+                                                              ones DIR lacks)
 
-A speed claim never stands without its accuracy: with --accuracy, the headline gives every engine's
-error against the moving scenes' stated answers beside its speed, and each row of the results table
-the subject's final-position error against the reference and which engines meet the answer.
+A speed claim never stands without its accuracy: with accuracy runs, the headline gives every
+engine's error against the moving scenes' stated answers beside its speed, each row of the results
+table the subject's final-position error against the reference and which engines meet the answer,
+and the compact table marks every engine that misses a row's answer.
 
-The tables, in order: the summary (the subject against every engine, sleeping on and off, and
+The full tables, in order: the summary (the subject against every engine, sleeping on and off, and
 every row where it loses), the headline (the moving scenes, where every engine works each step), the
 results (time per step of every engine on every row), the work and memory behind them (contacts
 per step and heap held per body), the worst frame (each engine's median and slowest
 step), the subject's scaling per family, the harness' cost, and an
 adapter's cost: an engine through chainbench beside the same scene built by hand in its own API
-(plain/FAMILY/ENGINE/SIZE rows, such as the box2d3 pyramid's).
+(plain/FAMILY/ENGINE/SIZE rows, such as the box2d3 pyramid's). The compact table (the README's) is
+the moving scenes and the resting pyramid, the subject's time and how many times faster it steps
+than each other engine, sleeping off and on.
 """
 import argparse
 import json
@@ -93,16 +105,14 @@ def counterpart(context, subject, engine):
     return solving
 
 
-def accuracy_runs(context, runs, exe, out_dir):
-    """Runs every (family, size) row's scene once in each engine it was timed in, against the
-    reference, and returns {(family, size): (run JSON, steps or None)}. Steps are capped so that
-    each run stays within ACCURACY_BUDGET_S by the benchmark's own times."""
+def accuracy_plan(context, runs, exe, out_dir):
+    """Every (family, size) row's accuracy run: [((family, size), chainbench arguments, JSON path,
+    steps or None)]. Steps are capped so that each run stays within ACCURACY_BUDGET_S by the
+    benchmark's own times; a row whose reference was not timed has no run."""
     recipes = family_recipes(context)
     reference = context.get("chainbench_reference", "")
-    os.makedirs(out_dir, exist_ok=True)
-    results = {}
-    groups = sorted({(f, size) for f, e, size in runs if f in recipes})
-    for n, (family, size) in enumerate(groups, 1):
+    plan = []
+    for family, size in sorted({(f, size) for f, e, size in runs if f in recipes}):
         scene, keys, sets = recipes[family]
         engines = [e for (f, e, sz) in runs if f == family and sz == size]
         if reference and reference not in engines:
@@ -119,12 +129,28 @@ def accuracy_runs(context, runs, exe, out_dir):
             args += ["--steps", str(steps)]
         path = os.path.join(out_dir, f"{family}_{size or 'default'}.json")
         args += ["--json", path]
-        print(f"bench_table.py: accuracy {n}/{len(groups)}: {family} {size}", file=sys.stderr)
-        done = subprocess.run(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-        if done.returncode not in (0, 3):
-            sys.exit(f"bench_table.py: {' '.join(args)} failed:\n{done.stderr}")
+        plan.append(((family, size), args, path, steps))
+    return plan
+
+
+def accuracy_runs(context, runs, exe, out_dir, reuse=False):
+    """Runs every (family, size) row's scene once in each engine it was timed in, against the
+    reference, and returns {(family, size): (run JSON, steps or None)}. With reuse, a run whose
+    JSON is already in out_dir is read as it is (without exe, a missing one is an error)."""
+    os.makedirs(out_dir, exist_ok=True)
+    results = {}
+    plan = accuracy_plan(context, runs, exe or "chainbench", out_dir)
+    for n, (group, args, path, steps) in enumerate(plan, 1):
+        if not (reuse and os.path.exists(path)):
+            if not exe:
+                sys.exit(f"bench_table.py: {path}: no stored accuracy run of {group[0]} {group[1]} "
+                         "(run with --accuracy CHAINBENCH to make it)")
+            print(f"bench_table.py: accuracy {n}/{len(plan)}: {group[0]} {group[1]}", file=sys.stderr)
+            done = subprocess.run(args, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+            if done.returncode not in (0, 3):
+                sys.exit(f"bench_table.py: {' '.join(args)} failed:\n{done.stderr}")
         with open(path, encoding="utf-8") as f:
-            results[(family, size)] = (json.load(f), steps)
+            results[group] = (json.load(f), steps)
     return results
 
 
@@ -256,6 +282,16 @@ def times(b):
     return f"{fmt_ms(b[0])} against {fmt_ms(b[1])} ms"
 
 
+def losses(context, runs, subject, groups, others):
+    """[(times faster, engine, family, size)]: every row where an engine steps faster than the
+    subject's row it is set against (counterpart), the largest loss first."""
+    return sorted(((ms(runs[(f, counterpart(context, subject, e), sz)]) / ms(runs[(f, e, sz)]), e, f, sz)
+                   for f, sz in groups for e in others
+                   if (f, e, sz) in runs and (f, counterpart(context, subject, e), sz) in runs
+                   and ms(runs[(f, e, sz)]) < ms(runs[(f, counterpart(context, subject, e), sz)])),
+                  reverse=True)
+
+
 def summary(context, runs, subject):
     """The sentences that open the results: on the rows both ran, how many times faster the
     subject steps than each engine (sleeping on and off alike, as the labels say), on the moving
@@ -297,11 +333,7 @@ def summary(context, runs, subject):
                    f"or are pushed, {span(other_rows)}.")
     else:
         out[0] += f": {span(groups)}."
-    lost = sorted(((ms(runs[(f, counterpart(context, subject, e), sz)]) / ms(runs[(f, e, sz)]), e, f, sz)
-                   for f, sz in groups for e in others
-                   if (f, e, sz) in runs and (f, counterpart(context, subject, e), sz) in runs
-                   and ms(runs[(f, e, sz)]) < ms(runs[(f, counterpart(context, subject, e), sz)])),
-                  reverse=True)
+    lost = losses(context, runs, subject, groups, others)
     if lost:
         def loss(faster, e, f, sz):
             m = counterpart(context, subject, e)
@@ -505,6 +537,100 @@ def churn_table(context, runs):
             "|---|---|---:|---:|---:|"] + out
 
 
+# The compact table's rows beside the moving scenes: families that come to rest, each at the largest
+# size every engine ran; and its columns, first of all (the others follow in the benchmark's order).
+COMPACT_RESTING = ("pyramid",)
+COMPACT_FIRST = ("box2d3", "box2d", "chipmunk")
+
+
+def compact_table(context, runs, accuracy=None, results_link="docs/results.md"):
+    """The README's headline: the moving scenes and the resting pyramid, each at the largest size
+    every engine ran; the subject's time per step (and its error against the scene's stated
+    answer, with accuracy runs), and how many times faster it steps than each other engine with
+    sleeping off and on, like against like; then where the subject loses, and when and where it
+    was measured. The full tables are at results_link."""
+    accuracy = accuracy or {}
+    recipes = family_recipes(context)
+    engines, groups = ordered(runs)
+    subject = context.get("chainbench_subject", engines[0] if engines else "")
+    if subject not in engines:
+        return ""
+    solving = context.get("chainbench_subject_solving", "")
+    moving = listed(context, "chainbench_moving")
+    rows = []
+    for family in moving + [f for f in COMPACT_RESTING if f not in moving]:
+        sizes = [size for f, size in groups
+                 if f == family and all((f, e, size) in runs for e in engines)]
+        if sizes:
+            rows.append((family, sizes[-1]))
+    if not rows:
+        return ""
+    # One column per other engine, its sleeping setting (NAME:sleep=1) beside it in the same cell;
+    # the subject's own settings (chain:variant=..., chain:skip_rest=0) are in the full tables.
+    bases = [e for e in engines if ":" not in e and e != subject]
+    bases.sort(key=lambda e: COMPACT_FIRST.index(e) if e in COMPACT_FIRST else len(COMPACT_FIRST))
+    sleeping = {e: f"{e}:sleep=1" if f"{e}:sleep=1" in engines else None for e in bases}
+    compared = [e for e in engines if e.partition(":")[0] in bases]
+    marks, notes = caveat_marks(context, compared)
+    with_error = bool(accuracy)
+
+    def misses(group, e):
+        return with_error and answer_error(accuracy, group, e).endswith("misses")
+
+    def ratio(family, size, e):
+        against = runs.get((family, counterpart(context, subject, e), size))
+        if not against or (family, e, size) not in runs:
+            return "-"
+        faster = ms(runs[(family, e, size)]) / ms(against)
+        cell = f"{faster:,.0f}x" if faster >= 100 else times_faster(faster)
+        return cell + (" (misses)" if misses((family, size), e) else "")
+
+    solving_key = solving.partition(":")[2]
+    like = (f", like against like (an engine that sleeps against `{subject}`, which skips a world at "
+            f"rest; one that solves every body every step against `{solving}`, which does too)"
+            if solving else "")
+    out = [f"How many times faster `{subject}` steps than each engine, with sleeping off · on{like}, "
+           "on the moving scenes and the resting pyramid, each at the largest size every engine ran"
+           + ("; `(misses)`: that engine misses the scene's stated answer" if with_error else "")
+           + f". Every row, engine and table: [{results_link}]({results_link}).", "",
+           f"| scene | bodies | `{subject}` ms/step |" + (f" `{subject}` error |" if with_error else "")
+           + "".join(f" vs `{e}`{marks.get(e, '')} (sleep off · on) |" if sleeping[e]
+                     else f" vs `{e}`{marks.get(e, '')} |" for e in bases),
+           "|---|---:|---:|" + ("---:|" if with_error else "") + "---|" * len(bases)]
+    for family, size in rows:
+        sub = runs[(family, subject, size)]
+        mine = fmt_ms(ms(sub))
+        if family not in moving and solving and (family, solving, size) in runs:
+            mine += f" ({fmt_ms(ms(runs[(family, solving, size)]))} at `{solving_key}`)"
+        error = f" {answer_error(accuracy, (family, size), subject) or '-'} |" if with_error else ""
+        cells = [ratio(family, size, e) + (f" · {ratio(family, size, sleeping[e])}" if sleeping[e] else "")
+                 for e in bases]
+        out.append(f"| {row_label(recipes, family, size)} | {int(sub.get('bodies', 0)):,} | {mine} |"
+                   f"{error} " + " | ".join(cells) + " |")
+    lost = losses(context, runs, subject, groups, compared)
+    timed = sum(1 for f, sz in groups for e in compared
+                if (f, e, sz) in runs and (f, counterpart(context, subject, e), sz) in runs)
+    out.append("")
+    if lost:
+        faster, e, f, sz = lost[0]
+        m = counterpart(context, subject, e)
+        out.append(f"Where `{subject}` loses: on {len(lost)} of the {timed} rows and engines set "
+                   f"against it in the full tables; the most, `{e}`{marks.get(e, '')} steps "
+                   f"{row_label(recipes, f, sz)} {faster:.1f}x faster "
+                   f"({times((ms(runs[(f, e, sz)]), ms(runs[(f, m, sz)])))} per step).")
+    else:
+        out.append(f"No engine steps any row of the full tables faster than `{subject}`.")
+    if notes:
+        out[-1] += " " + " ".join(notes)
+    out += ["", measured(context)]
+    return "\n".join(out)
+
+
+def measured(context):
+    return (f"Measured {context.get('date', '?')} on {context.get('num_cpus', '?')} CPUs at "
+            f"{context.get('mhz_per_cpu', '?')} MHz, one benchmark at a time; ratios are from the same run.")
+
+
 def tables(context, runs, accuracy=None):
     """Every table, in the order the module docstring gives."""
     accuracy = accuracy or {}
@@ -520,30 +646,54 @@ def tables(context, runs, accuracy=None):
     out += harness_table(context, runs, subject)
     out += plain_table(context, runs)
     out += churn_table(context, runs)
-    out += ["", f"Measured {context.get('date', '?')} on {context.get('num_cpus', '?')} CPUs at "
-            f"{context.get('mhz_per_cpu', '?')} MHz, one benchmark at a time; ratios are from the same run."]
+    out += ["", measured(context)]
     return "\n".join(out)
 
 
-def replace_in_readme(path, text):
-    with open(path, encoding="utf-8") as f:
-        readme = f.read()
-    pattern = re.compile(re.escape(BEGIN) + r".*?" + re.escape(END), re.S)
-    if not pattern.search(readme):
-        sys.exit(f"bench_table.py: {path} has no {BEGIN} ... {END} markers")
-    readme = pattern.sub(lambda _: f"{BEGIN}\n{text}\n{END}", readme)
+RESULTS_HEAD = """# Results: every benchmark table
+
+Generated by `scripts/bench.sh` from `results/bench.json` (and the accuracy runs in
+`results/bench_runs/`): `scripts/bench_table.py` rewrites what lies between the results markers on
+every run and keeps the text around them. How the benchmark runs and what its rows and counters
+are: [benchmarks.md](benchmarks.md). The README's headline table is the compact form of these.
+
+"""
+
+
+def replace_between_markers(path, text, new_file=None):
+    """Rewrites what lies between the results markers of the file at path with text; a file that
+    does not exist yet is written whole as new_file's head, the markers and text, when given."""
+    if new_file is not None and not os.path.exists(path):
+        document = f"{new_file}{BEGIN}\n{text}\n{END}\n"
+    else:
+        with open(path, encoding="utf-8") as f:
+            document = f.read()
+        pattern = re.compile(re.escape(BEGIN) + r".*?" + re.escape(END), re.S)
+        if not pattern.search(document):
+            sys.exit(f"bench_table.py: {path} has no {BEGIN} ... {END} markers")
+        document = pattern.sub(lambda _: f"{BEGIN}\n{text}\n{END}", document)
     with open(path, "w", encoding="utf-8") as f:
-        f.write(readme)
+        f.write(document)
+
+
+def link_from(readme, results):
+    """The results file's path as a link from the README's folder: docs/results.md."""
+    folder = os.path.dirname(os.path.abspath(readme))
+    return os.path.relpath(os.path.abspath(results), folder).replace(os.sep, "/")
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("json", help="chainbench_bench --benchmark_out file")
-    parser.add_argument("--readme", help="README to update between the results markers")
+    parser.add_argument("--readme", help="README whose results markers get the compact headline table")
+    parser.add_argument("--results", help="file whose results markers get the full tables "
+                        "(docs/results.md; written whole when it does not exist)")
     parser.add_argument("--accuracy", metavar="CHAINBENCH",
                         help="run each row's scene with this chainbench to add its error")
     parser.add_argument("--runs", default="results/bench_runs",
                         help="where the accuracy runs' JSON goes (default results/bench_runs)")
+    parser.add_argument("--reuse-runs", action="store_true",
+                        help="read the accuracy runs already in --runs instead of running them again")
     args = parser.parse_args()
     try:
         context, runs = load(args.json)
@@ -551,11 +701,15 @@ def main():
         sys.exit(f"bench_table.py: cannot read {args.json}: {e}")
     if not runs:
         sys.exit(f"bench_table.py: {args.json} holds no benchmark results")
-    accuracy = accuracy_runs(context, runs, args.accuracy, args.runs) if args.accuracy else {}
+    accuracy = (accuracy_runs(context, runs, args.accuracy, args.runs, reuse=args.reuse_runs)
+                if args.accuracy or args.reuse_runs else {})
     text = tables(context, runs, accuracy)
     print(text)
+    if args.results:
+        replace_between_markers(args.results, text, new_file=RESULTS_HEAD)
     if args.readme:
-        replace_in_readme(args.readme, text)
+        link = link_from(args.readme, args.results) if args.results else "docs/results.md"
+        replace_between_markers(args.readme, compact_table(context, runs, accuracy, link))
 
 
 if __name__ == "__main__":

@@ -13,9 +13,9 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import bench_table  # noqa: E402  (the README's results tables, reused)
+import bench_table  # noqa: E402  (docs/results.md's tables, reused)
 import report_conclusion  # noqa: E402  (the opening section)
-import stress_table  # noqa: E402  (the README's stress results, reused)
+import stress_table  # noqa: E402  (docs/stress.md's stress results, reused)
 
 def suite_order(root):
     """The default suite's scenes in their order (RESULTS/suite.txt, which scripts/run.sh writes
@@ -290,7 +290,7 @@ def main():
     if os.path.exists(bench_path):
         context, bench_runs = bench_table.load(bench_path)
         lines += ["## Time per step and scaling", "",
-                  "Google Benchmark, warmed-up worlds, one step per iteration (the README's table comes from "
+                  "Google Benchmark, warmed-up worlds, one step per iteration (docs/results.md's tables come from "
                   "the full suite, `scripts/bench.sh`).", "", bench_table.tables(context, bench_runs), ""]
         if os.path.exists(os.path.join(plots, "scaling.png")):
             lines += ["![ms/step against bodies](plots/scaling.png)", ""]

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """Renders a chainbench.stress/1 JSON as Markdown: a grid of verdicts (case x engine) and, for each
-engine, the cases where it is not ok and why. With --readme it rewrites README.md's stress results
+engine, the cases where it is not ok and why. With --doc it rewrites docs/stress.md's stress results
 between the <!-- stress:begin --> and <!-- stress:end --> markers; otherwise it prints them.
 
-    scripts/stress_table.py results/stress.json [--readme README.md]
+    scripts/stress_table.py results/stress.json [--doc docs/stress.md]
 """
 import argparse
 import json
@@ -71,21 +71,22 @@ def render(stress):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("stress_json")
-    parser.add_argument("--readme", help="rewrite this file's stress results in place")
+    parser.add_argument("--doc", "--readme", dest="doc",
+                        help="rewrite this file's stress results in place (docs/stress.md)")
     args = parser.parse_args()
     text = render(load(args.stress_json))
-    if not args.readme:
+    if not args.doc:
         print(text)
         return
-    with open(args.readme, encoding="utf-8") as f:
+    with open(args.doc, encoding="utf-8") as f:
         readme = f.read()
     if BEGIN not in readme or END not in readme:
-        sys.exit(f"stress_table.py: {args.readme} has no {BEGIN} ... {END} markers")
+        sys.exit(f"stress_table.py: {args.doc} has no {BEGIN} ... {END} markers")
     head, rest = readme.split(BEGIN, 1)
     _, tail = rest.split(END, 1)
-    with open(args.readme, "w", encoding="utf-8") as f:
+    with open(args.doc, "w", encoding="utf-8") as f:
         f.write(head + BEGIN + "\n" + text + "\n" + END + tail)
-    print(f"stress_table.py: rewrote the stress results in {args.readme}")
+    print(f"stress_table.py: rewrote the stress results in {args.doc}")
 
 
 if __name__ == "__main__":

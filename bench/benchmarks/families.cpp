@@ -13,8 +13,8 @@ const std::vector<Family>& benchmark_families() {
   // random_pile is a deep pile (2 sqrt(n) m wide) that the reference engines' default solvers
   // let sink; shallow_pile, five boxes deep with friction, is one they hold, so that there every
   // engine does the same work. The scaling series run the engine under test from about 5k bodies
-  // to as many as a step takes well under a second; the others stop at the sizes README's table
-  // had them at, or where a step takes seconds. Worlds that come to rest are warmed up for 45
+  // to as many as a step takes well under a second; the others stop at the sizes docs/results.md
+  // has them at, or where a step takes seconds. Worlds that come to rest are warmed up for 45
   // steps or more: the reference engines put a body to sleep after half a second (30 steps) at
   // rest, and their sleeping rows should time the world they sleep in. The moving scenes are timed
   // over steps 60 to 120 of their own 120-step run, which their right answers are stated for: the

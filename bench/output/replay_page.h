@@ -2,7 +2,7 @@
 // A replay page: one self-contained HTML file (its data and script inline, nothing fetched) that
 // plays every engine's run of a scene over the others, with the charts of their error,
 // energy-free displacement and penetration at every step, the scene's expectations, and each
-// failed check and engine event marked where and when (README.md, "Replay pages").
+// failed check and engine event marked where and when (docs/replay.md).
 //
 // Positions are quantised (position_stream.h); when the page would exceed its size limit, only
 // every k-th step's positions are kept (the charts keep every step). The page says which.

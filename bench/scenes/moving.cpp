@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Moving scenes: worlds in which every engine must work each step, for the benchmark's fair race
-// (README, Benchmarks). Each repeats a small event across the scene, so that it scales with one
+// (docs/benchmarks.md §3). Each repeats a small event across the scene, so that it scales with one
 // size parameter and keeps its character, and states where every body is at the end, with the
 // windowed facts that hold on the way. Unit boxes (1 kg) unless said; frictionless, upright and
 // inelastic, as every built-in scene: with restitution 0 no contact ever speeds a body up along

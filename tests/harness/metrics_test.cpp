@@ -49,8 +49,8 @@ TEST(Metrics, EnergyFreeDisplacementIsTheMoveVelocityDoesNotExplain) {
 }
 
 // A body at x = 0.2 coasting at 3 m/s with dt = 0.1 ends at 0.2 + 0.3, and in doubles that minus
-// 0.2 minus 0.3 is -5.6e-17 m: rounding, no push, so it reads 0, as README says of figures below
-// the arithmetic's resolution. A push of 1e-9 m is real and counts.
+// 0.2 minus 0.3 is -5.6e-17 m: rounding, no push, so it reads 0, as docs/reading-the-tables.md
+// §3 says of figures below the arithmetic's resolution. A push of 1e-9 m is real and counts.
 TEST(Metrics, EnergyFreeDisplacementBelowRoundingIsZero) {
   const Scene s = two_boxes({0.2, 0}, {5, 0});
   MetricsRecorder m(s, MetricSelection{true, false, false});

@@ -186,9 +186,9 @@ TEST(ReplayPage, MarksTheEnginesEventsWhereAndWhen) {
   EXPECT_GE(events["step"][0].get<int>(), 1);
 }
 
-// The automated size bound (the 5,050-box pyramid itself is measured by hand, README.md): 465
-// boxes for 300 steps in three engines stay under 1 MB (0.62 MB when written), and a limit below
-// that is met by keeping one step in k.
+// The automated size bound (the 5,050-box pyramid itself is measured by hand, docs/replay.md §4):
+// 465 boxes for 300 steps in three engines stay under 1 MB (0.62 MB when written), and a limit
+// below that is met by keeping one step in k.
 TEST(ReplayPage, StaysWithinItsSizeLimitByKeepingFewerSteps) {
   const Scene scene = make_scene("pyramid", {"base=30"});
   const std::vector<std::string> engines = {"box2d", "chain", "chipmunk"};

@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: MIT
-# "Bring your own resolver", as README gives it: install chainbench into a scratch prefix and the
-# plugin header's package alone (bench/include/) into another; build the example plugin out of
-# tree against the header alone, where no package or library the harness is built with can be
-# found (find_package(chainbench_plugin) -> chainbench::engine_plugin); and run the installed
-# chainbench and chainbench_bench with it beside the built-in engines. Run by ctest (script mode).
+# "Bring your own resolver", as docs/plugins.md gives it: install chainbench into a scratch
+# prefix and the plugin header's package alone (bench/include/) into another; build the example
+# plugin out of tree against the header alone, where no package or library the harness is built
+# with can be found (find_package(chainbench_plugin) -> chainbench::engine_plugin); and run the
+# installed chainbench and chainbench_bench with it beside the built-in engines. Run by ctest
+# (script mode).
 foreach(var BUILD_DIR HEADER_DIR PLUGIN_DIR WORK_DIR GENERATOR MAKE_PROGRAM CXX_COMPILER PROBE BENCH)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "check_plugin.cmake needs -D${var}=...")
@@ -80,7 +81,7 @@ set(plugin "${WORK_DIR}/relaxation/librelaxation.so")
 if(NOT EXISTS "${plugin}")
   message(FATAL_ERROR "building the example plugin out of tree made no ${plugin}")
 endif()
-# README's way, against the whole install: it finds the same package there.
+# docs/plugins.md's way, against the whole install: it finds the same package there.
 run(${CMAKE_COMMAND} -S "${PLUGIN_DIR}" -B "${WORK_DIR}/relaxation_full" -G "${GENERATOR}"
     "-DCMAKE_PREFIX_PATH=${prefix}" "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}" ${only_the_prefix})
 
@@ -90,7 +91,7 @@ if(NOT last_output MATCHES "plugin:path=librelaxation.so,iterations=8")
   message(FATAL_ERROR "the run's table has no row for the plugin:\n${last_output}")
 endif()
 if(BENCH)
-  # README's benchmark command, the plugin's benchmark of its smallest family only.
+  # docs/plugins.md's benchmark command, the plugin's benchmark of its smallest family only.
   run("${prefix}/bin/chainbench_bench" "--chainbench_engines=chain,plugin:path=${plugin}"
       "--benchmark_filter=^stack/plugin")
   if(NOT last_output MATCHES "stack/plugin:path=librelaxation.so/0/[^\n]* bodies=16")

@@ -4,7 +4,10 @@
 order, scenes are named with the settings their family uses, the ratio is reference over subject
 from the same run, and with accuracy runs each row carries its error and who meets the answer;
 the headline gives the moving scenes' ratios with each engine's error, a table gives contacts and
-heap per body, and each scaling family has its table relative to its base size.
+heap per body, and each scaling family has its table relative to its base size; the compact
+headline table (the moving scenes and the resting pyramid) goes between the README's markers, the
+full tables between those of docs/results.md (written whole when new), the same bytes every time,
+and stored accuracy runs are read back without running chainbench again.
 
     /usr/bin/python3 tests/scripts/bench_table_test.py
 """
@@ -12,6 +15,8 @@ import importlib.util
 import json
 import os
 import stat
+import subprocess
+import sys
 import tempfile
 import unittest
 from pathlib import Path
@@ -302,6 +307,142 @@ class LikeAgainstLikeTest(unittest.TestCase):
         self.assertIn("| ref / fast:skip_rest=0 |", header)
         row = next(line for line in text.splitlines() if line.startswith("| `stack` |"))
         self.assertIn("| 10.0x |", row)
+
+
+COMPACT_CONTEXT = {"chainbench_subject": "fast", "chainbench_reference": "ref",
+                   "chainbench_subject_solving": "fast:skip_rest=0", "chainbench_sleeping": "ref:sleep=1",
+                   "chainbench_family_rain": "rain cols steps=120", "chainbench_family_pyramid": "pyramid base",
+                   "chainbench_moving": "rain", "chainbench_caveat_ref": "ref is a debug build",
+                   "date": "today", "num_cpus": 2, "mhz_per_cpu": 1}
+COMPACT_RUNS = {("rain", "fast", "1000"): bench("rain/fast/1000", 1.0, 11910, 84),
+                ("rain", "fast:skip_rest=0", "1000"): bench("rain/fast:skip_rest=0/1000", 1.0, 11910, 84),
+                ("rain", "ref", "1000"): bench("rain/ref/1000", 8.0, 11910, 672),
+                ("rain", "ref:sleep=1", "1000"): bench("rain/ref:sleep=1/1000", 5.0, 11910, 420),
+                ("rain", "box2d3", "1000"): bench("rain/box2d3/1000", 4.0, 11910, 336),
+                ("rain", "fast", "10000"): bench("rain/fast/10000", 14.0, 119903, 117),
+                ("pyramid", "fast", "100"): bench("pyramid/fast/100", 0.001, 5051, 0.2),
+                ("pyramid", "fast:skip_rest=0", "100"): bench("pyramid/fast:skip_rest=0/100", 0.2, 5051, 40),
+                ("pyramid", "ref", "100"): bench("pyramid/ref/100", 30.0, 5051, 6000),
+                ("pyramid", "ref:sleep=1", "100"): bench("pyramid/ref:sleep=1/100", 0.0005, 5051, 0.1),
+                ("pyramid", "box2d3", "100"): bench("pyramid/box2d3/100", 5.0, 5051, 1000)}
+
+
+class CompactTableTest(unittest.TestCase):
+    """The README's headline: a few rows, the subject's time, each other engine's ratio with
+    sleeping off and on in one cell, like against like."""
+
+    def test_moving_scenes_and_the_resting_pyramid_at_the_size_every_engine_ran(self):
+        lines = bench_table.compact_table(COMPACT_CONTEXT, COMPACT_RUNS).splitlines()
+        self.assertTrue(lines[0].startswith("How many times faster `fast` steps than each engine"), lines[0])
+        self.assertIn("[docs/results.md](docs/results.md)", lines[0])
+        # box2d3 comes first, ref with its sleeping setting beside it; fast's own settings are not columns.
+        self.assertEqual(lines[2], "| scene | bodies | `fast` ms/step | vs `box2d3` | "
+                                   "vs `ref`† (sleep off · on) |")
+        # rain at 10,000 ran in fast only: the row is the 1,000 every engine ran. An engine that
+        # does not sleep is set against fast:skip_rest=0, a sleeping one against fast.
+        self.assertEqual(lines[4:6], [
+            "| `rain` cols=1,000 | 11,910 | 1.000 | 4.0x | 8.0x · 5.0x |",
+            "| `pyramid` base=100 | 5,051 | 0.001 (0.200 at `skip_rest=0`) | 25.0x | 150x · 0.5x |"])
+        self.assertEqual(len(lines), 10)
+        self.assertEqual(lines[7], "Where `fast` loses: on 1 of the 6 rows and engines set against it in the "
+                                   "full tables; the most, `ref:sleep=1`† steps `pyramid` base=100 2.0x "
+                                   "faster (0.0005 against 0.001 ms per step). † ref is a debug build.")
+        self.assertEqual(lines[9], "Measured today on 2 CPUs at 1 MHz, one benchmark at a time; ratios "
+                                   "are from the same run.")
+
+    def test_with_accuracy_the_subject_has_its_error_and_a_miss_is_marked(self):
+        run = {"runs": [{"engine": "FAST", "label": "fast", "expect": {"pass": True, "max_error": 0.0}},
+                        {"engine": "B3", "label": "box2d3", "expect": {"pass": False, "max_error": 0.11}}],
+               "reference_run": {"engine": "REF", "label": "ref", "expect": {"pass": True, "max_error": 0.02}},
+               "comparison": []}
+        lines = bench_table.compact_table(COMPACT_CONTEXT, COMPACT_RUNS,
+                                          {("rain", "1000"): (run, None)}).splitlines()
+        self.assertIn("`(misses)`: that engine misses the scene's stated answer", lines[0])
+        self.assertEqual(lines[2], "| scene | bodies | `fast` ms/step | `fast` error | vs `box2d3` | "
+                                   "vs `ref`† (sleep off · on) |")
+        self.assertEqual(lines[4], "| `rain` cols=1,000 | 11,910 | 1.000 | 0 m | 4.0x (misses) | 8.0x · 5.0x |")
+        self.assertTrue(lines[5].startswith("| `pyramid` base=100 | 5,051 | 0.001 (0.200 at `skip_rest=0`) | - |"))
+
+    def test_no_engine_faster_anywhere_is_said(self):
+        runs = {k: v for k, v in COMPACT_RUNS.items() if k[1] != "ref:sleep=1"}
+        text = bench_table.compact_table(COMPACT_CONTEXT, runs)
+        self.assertIn("No engine steps any row of the full tables faster than `fast`.", text)
+        self.assertIn("| vs `ref`† |", text)
+
+
+class WritesTheFilesTest(unittest.TestCase):
+    """main(): the compact table between the README's markers, the full tables between those of
+    the results file, the text around the markers kept, and the same bytes on a second run."""
+
+    README = "# project\n\nintro\n\n<!-- results:begin -->\nold tables\n<!-- results:end -->\n\nafter\n"
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = Path(self.tmp.name)
+        (self.dir / "docs").mkdir()
+        self.json = self.dir / "bench.json"
+        self.json.write_text(json.dumps({"context": COMPACT_CONTEXT,
+                                         "benchmarks": list(COMPACT_RUNS.values())}), encoding="utf-8")
+        self.readme = self.dir / "README.md"
+        self.readme.write_text(self.README, encoding="utf-8")
+        self.results = self.dir / "docs" / "results.md"
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def run_script(self, *extra, check=True):
+        return subprocess.run([sys.executable, str(SCRIPT), str(self.json), "--readme", str(self.readme),
+                               "--results", str(self.results), *extra],
+                              capture_output=True, text=True, check=check)
+
+    def test_compact_to_the_readme_full_to_the_results_and_twice_the_same(self):
+        self.run_script()
+        readme = self.readme.read_text(encoding="utf-8")
+        results = self.results.read_text(encoding="utf-8")
+        self.assertTrue(readme.startswith("# project\n\nintro\n\n<!-- results:begin -->\nHow many times"))
+        self.assertTrue(readme.endswith("same run.\n<!-- results:end -->\n\nafter\n"))
+        self.assertIn("| `rain` cols=1,000 | 11,910 | 1.000 | 4.0x | 8.0x · 5.0x |", readme)
+        self.assertIn("[docs/results.md](docs/results.md)", readme)
+        self.assertNotIn("old tables", readme)
+        self.assertNotIn("| scene | bodies | fast ms/step", readme)  # the full tables are not there
+        # A new results file is written whole: its head, then the full tables between the markers.
+        self.assertTrue(results.startswith("# Results: every benchmark table\n\nGenerated by "
+                                           "`scripts/bench.sh` from `results/bench.json`"), results[:200])
+        self.assertIn("\n<!-- results:begin -->\n**`fast` against every engine", results)
+        self.assertIn("| scene | bodies | fast ms/step | fast:skip_rest=0 ms/step |", results)
+        self.assertTrue(results.endswith("same run.\n<!-- results:end -->\n"))
+        self.run_script()
+        self.assertEqual(self.readme.read_text(encoding="utf-8"), readme)
+        self.assertEqual(self.results.read_text(encoding="utf-8"), results)
+        # Text written around the results file's markers stays, as the README's does.
+        self.results.write_text(results + "\nWhat it shows: by hand.\n", encoding="utf-8")
+        self.run_script()
+        self.assertEqual(self.results.read_text(encoding="utf-8"), results + "\nWhat it shows: by hand.\n")
+
+    def test_a_file_without_markers_is_refused(self):
+        self.readme.write_text("# project\n", encoding="utf-8")
+        done = self.run_script(check=False)
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("has no <!-- results:begin --> ... <!-- results:end --> markers", done.stderr)
+        self.assertEqual(self.readme.read_text(encoding="utf-8"), "# project\n")
+
+    def test_stored_accuracy_runs_are_read_back_without_chainbench(self):
+        runs_dir = self.dir / "runs"
+        plan = bench_table.accuracy_plan(COMPACT_CONTEXT, COMPACT_RUNS, "chainbench", str(runs_dir))
+        self.assertEqual([group for group, *_ in plan], [("pyramid", "100"), ("rain", "1000")])
+        done = self.run_script("--reuse-runs", "--runs", str(runs_dir), check=False)
+        self.assertNotEqual(done.returncode, 0)  # nothing stored, nothing to run it with
+        self.assertIn("no stored accuracy run of pyramid 100", done.stderr)
+        run = {"runs": [{"engine": "FAST", "label": "fast", "expect": {"pass": True, "max_error": 0.0}},
+                        {"engine": "B3", "label": "box2d3", "expect": {"pass": False, "max_error": 0.11}}],
+               "reference_run": {"engine": "REF", "label": "ref", "expect": {"pass": True, "max_error": 0.02}},
+               "comparison": [{"engine": "FAST", "final_position_error": {"max": 0.02}}]}
+        for _, _, path, _ in plan:
+            Path(path).write_text(json.dumps(run), encoding="utf-8")
+        self.run_script("--reuse-runs", "--runs", str(runs_dir))
+        self.assertIn("| `rain` cols=1,000 | 11,910 | 1.000 | 0 m | 4.0x (misses) | 8.0x · 5.0x |",
+                      self.readme.read_text(encoding="utf-8"))
+        self.assertIn("| fast vs ref max m | meets the scene's answer |", self.results.read_text(encoding="utf-8"))
 
 
 if __name__ == "__main__":

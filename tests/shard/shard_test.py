@@ -71,7 +71,7 @@ def main():
 
     sweep = ["sweep", "--scene", "stack", "--set", "n=4", "--steps", "60", "--scene-file", scene_file]
     parts = [os.path.join(out, f"sweep.part{k}.json") for k in (1, 2, 3)]
-    # As README.md shows it: one part per job, {} the part's number.
+    # As docs/sharding.md shows it: one part per job, {} the part's number.
     run([parallel, "--will-cite", "--halt", "now,fail=1", "-j", "3", chainbench, *sweep,
          "--shard", "{}/3", "--json", os.path.join(out, "sweep.part{}.json"), ":::", "1", "2", "3"])
     whole, merged = os.path.join(out, "sweep.whole.json"), os.path.join(out, "sweep.merged.json")

@@ -150,7 +150,19 @@ def accuracy_runs(context, runs, exe, out_dir, reuse=False):
             if done.returncode not in (0, 3):
                 sys.exit(f"bench_table.py: {' '.join(args)} failed:\n{done.stderr}")
         with open(path, encoding="utf-8") as f:
-            results[group] = (json.load(f), steps)
+            run = json.load(f)
+        if reuse:
+            # A stored run stands for this row only if it ran the engines timed on it; its own
+            # step count is the one its errors were measured over.
+            labels = {r.get("label") for r in run.get("runs", []) + [run.get("reference_run", {})]}
+            wanted = args[args.index("--engines") + 1].split(",") + [args[args.index("--reference") + 1]]
+            missing = [e for e in wanted if e and e not in labels]
+            if missing:
+                sys.exit(f"bench_table.py: {path}: the stored run has no {', '.join(missing)} "
+                         "(run with --accuracy CHAINBENCH to make it again)")
+            if steps is not None:
+                steps = run.get("scene", {}).get("steps", steps)
+        results[group] = (run, steps)
     return results
 
 
@@ -709,7 +721,11 @@ def main():
         replace_between_markers(args.results, text, new_file=RESULTS_HEAD)
     if args.readme:
         link = link_from(args.readme, args.results) if args.results else "docs/results.md"
-        replace_between_markers(args.readme, compact_table(context, runs, accuracy, link))
+        compact = compact_table(context, runs, accuracy, link)
+        if not compact:
+            sys.exit(f"bench_table.py: no headline for {args.readme}: no moving or resting row was "
+                     "timed in every engine (its tables are left as they were)")
+        replace_between_markers(args.readme, compact)
 
 
 if __name__ == "__main__":

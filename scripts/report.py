@@ -17,6 +17,7 @@ import bench_table  # noqa: E402  (docs/results.md's tables, reused)
 import report_conclusion  # noqa: E402  (the opening section)
 import stress_table  # noqa: E402  (docs/stress.md's stress results, reused)
 
+
 def suite_order(root):
     """The default suite's scenes in their order (RESULTS/suite.txt, which scripts/run.sh writes
     from `chainbench list --suite default`); other runs follow by name."""

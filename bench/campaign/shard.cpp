@@ -2,6 +2,7 @@
 #include "campaign/shard.h"
 
 #include "judge/metrics.h"
+#include "support/fnv1a.h"
 #include "support/input_error.h"
 
 #include <charconv>
@@ -74,12 +75,9 @@ std::string scene_identity(const Scene& s) {
 }
 
 std::string grid_fingerprint(std::string_view description) {
-  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a, as metrics.h's hash
-  for (const char c : description) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 0x100000001b3ull;
-  }
-  return hex(h);
+  Fnv1a h;
+  h.add(description);
+  return hex(h.value);
 }
 
 nlohmann::ordered_json shard_json(const ShardOrigin& origin, const Shard& shard,

@@ -215,13 +215,16 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
   v.detail = s.detail;
   v.near_miss = s.near_miss != 0;
   const std::span<const MetricDef> table = metric_table();
-  for (std::size_t k = 0; k < table.size(); ++k)
-    v.metrics.push_back(s.measured[k] ? std::optional<double>(s.metrics[k]) : std::nullopt);
+  // A run that failed in the child measured nothing: its figures read 0 and its flags false, as
+  // the stress JSON has always written them.
+  for (std::size_t k = 0; k < table.size(); ++k) {
+    v.metrics.push_back(s.measured[k] || !v.error.empty() ? std::optional<double>(s.metrics[k])
+                                                          : std::nullopt);
+  }
   // The figures the verdict's logic reads by name.
   auto metric = [&](const char* name) {
-    const std::optional<double>& value =
-        v.metrics[static_cast<std::size_t>(find_metric(name) - table.data())];
-    return value.value_or(0.0);
+    const MetricDef* def = find_metric(name);
+    return def ? v.metric(static_cast<std::size_t>(def - table.data())).value_or(0.0) : 0.0;
   };
   v.max_penetration = metric("max_penetration");
   v.finite = metric("finite") != 0.0, v.in_bounds = metric("in_bounds") != 0.0;

@@ -102,13 +102,15 @@ int run_scene(const RunArgs& a) {
   const bool dense = a.trace_format == "dense";
   // The dense trace's metadata goes beside it, FILE.json, unless the trace goes to a device or a
   // pipe (written directly): there is no file to be beside then.
+  const bool trace_is_file = trace_out && trace_out->written() >= 0;
   std::unique_ptr<OutputFile> trace_meta_out;
-  if (trace_out && dense && trace_out->written() >= 0)
+  if (trace_is_file && dense)
     trace_meta_out = open_output(trace_metadata_path(a.trace), "--trace's metadata");
   if (trace_out && dense && !trace_meta_out) {
     std::cerr << "chainbench: note: --trace " << a.trace
-              << " is a device or a pipe: its metadata (dt, the engines' specs, the units) is not "
-                 "written; the rows' time column holds step * dt\n";
+              << " is written directly (a device, a pipe or the command's own output): its "
+                 "metadata (dt, the engines' specs, the units) is not written; the rows' time "
+                 "column holds step * dt\n";
   }
   auto replay_out = open_output(a.replay, a.replay_option);
   std::optional<TraceWriter> trace;
@@ -212,6 +214,11 @@ int run_scene(const RunArgs& a) {
   }
   commit_outputs(
       {json_out.get(), csv_out.get(), trace_out.get(), trace_meta_out.get(), replay_out.get()});
+  // A sparse trace over an earlier dense one: the earlier one's metadata would describe another
+  // run.
+  if (trace_is_file && !dense && remove_trace_metadata(trace_metadata_path(a.trace)))
+    std::cerr << "chainbench: note: removed " << trace_metadata_path(a.trace)
+              << ", the metadata of the dense trace this sparse one replaced\n";
   if (replay_out) {
     std::cout << "replay: wrote " << a.replay << " (" << fmt_g(written.bytes / 1e6, 3)
               << " MB; centres to " << fmt_g(written.quantum, 3) << " m, "

@@ -59,8 +59,8 @@ enum Counter {
 };
 const std::vector<CounterDef>& counter_list() {
   static const std::vector<CounterDef> list = {
-      {"passes", Aggregate::kMean, "contact sweeps per step", ""},
-      {"contacts", Aggregate::kMean, "overlapping pairs found per step, all sweeps", ""},
+      {"passes", Aggregate::kMean, "contact passes per step", ""},
+      {"contacts", Aggregate::kMean, "overlapping pairs found per step, all passes", ""},
       {"resolve_calls", Aggregate::kMean, "pair resolutions per step, chained ones included", ""},
       {"max_depth", Aggregate::kMax, "longest chain of nested resolutions", ""},
       {"budget_hits", Aggregate::kSum, "chains cut short by the work budget", "budget"},
@@ -237,7 +237,7 @@ EngineDef register_chain() {
   e.keys = {choice_key("variant", "modern", {"modern", "seed2014"},
                        "modern: chaining done right; seed2014: the 2014 engine, quirks included"),
             velocity,
-            whole_key("passes", 4, 1, 1000, "modern: contact sweeps per step, at most"),
+            whole_key("passes", 4, 1, 1000, "modern: contact passes per step, at most"),
             whole_key("budget", 64, 1, 1000000, "pair resolutions per body per step (+1024)"),
             whole_key("depth", 2048, 1, 16384, "seed2014: recursion depth limit"),
             whole_key("threads", 1, 1, chain::kMaxThreads,

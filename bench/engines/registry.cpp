@@ -96,11 +96,12 @@ std::string missing_capability(const EngineSpec& spec, const Scene& scene) {
     const SceneBody& b = scene.bodies[i];
     const std::string at = "bodies[" + std::to_string(i) + "] (" + b.name + ")";
     if (!can.friction && scene.friction_of(b) > 0.0) {
-      return who + " has no friction, and " + at + " has friction " + fmt_g(scene.friction_of(b));
+      return who + " has no friction, and " + at + " has friction " +
+             exact_number(scene.friction_of(b));
     }
     if (!can.restitution && scene.restitution_of(b) > 0.0) {
       return who + " does not bounce, and " + at + " has restitution " +
-             fmt_g(scene.restitution_of(b));
+             exact_number(scene.restitution_of(b));
     }
     if (!can.kinematic && b.kind == BodyKind::kKinematic) {
       return who + " has no kinematic bodies, and " + at + " is one";

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "judge/metrics.h"
 
+#include "support/fnv1a.h"
 #include "support/input_error.h"
 
 #include <algorithm>
@@ -164,17 +165,12 @@ Metrics MetricsRecorder::result(const BodyState& last) const {
 }
 
 std::uint64_t position_hash(std::span<const Vec2d> positions) {
-  std::uint64_t h = 0xcbf29ce484222325ull;
-  auto eat = [&h](double v) {
-    const auto bits = std::bit_cast<std::uint64_t>(v);
-    for (int k = 0; k < 8; ++k) {
-      h ^= (bits >> (8 * k)) & 0xffu;
-      h *= 0x100000001b3ull;
-    }
-  };
-  for (const Vec2d& p : positions)
-    eat(p.x), eat(p.y);
-  return h;
+  Fnv1a h;
+  for (const Vec2d& p : positions) {
+    h.add_bits(p.x);
+    h.add_bits(p.y);
+  }
+  return h.value;
 }
 
 std::string hex(std::uint64_t v) {

@@ -170,7 +170,7 @@ std::vector<SceneIssue> validate(const Scene& s) {
   if (s.steps < 1 || s.steps > L::kMaxSteps)
     c.add("steps", "must be in [1, 10000000], got " + std::to_string(s.steps));
   if (!std::isfinite(s.dt) || s.dt < L::kMinDt || s.dt > L::kMaxDt)
-    c.add("dt", "must be in [1e-6, 1] s, got " + num(s.dt));
+    c.add("dt", "must be in [" + num(L::kMinDt) + ", " + num(L::kMaxDt) + "] s, got " + num(s.dt));
   c.finite_within("gravity[0]", s.gravity.x, -L::kMaxGravity, L::kMaxGravity, "within +-1e4 m/s^2");
   c.finite_within("gravity[1]", s.gravity.y, -L::kMaxGravity, L::kMaxGravity, "within +-1e4 m/s^2");
   c.finite_within("friction", s.friction, 0.0, L::kMaxFriction, "in [0, 10]");

@@ -2,9 +2,9 @@
 #include "output/trace_writer.h"
 #include "support/number_text.h"
 
-#include <charconv>
+#include <cstdio>
 #include <cstring>
-#include <limits>
+#include <fstream>
 
 namespace chainbench {
 
@@ -48,6 +48,16 @@ constexpr std::array<std::pair<const char*, const char*>, 11> kDenseColumns = {{
 
 std::string trace_metadata_path(const std::string& trace_path) {
   return trace_path + ".json";
+}
+
+bool remove_trace_metadata(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return false;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || j.value("schema", "") != "chainbench.trace/1")
+    return false;
+  in.close();
+  return std::remove(path.c_str()) == 0;
 }
 
 nlohmann::ordered_json trace_metadata_json(const Scene& scene,
@@ -106,15 +116,16 @@ void TraceWriter::begin(const EngineSpec& spec, std::span<const CounterDef>) {
 
 void TraceWriter::observe_dense(const StepView& v) {
   const BodyState& s = *v.state;
-  std::string prefix = label_;
-  prefix += ',';
-  prefix += std::to_string(v.step);
-  prefix += ',';
-  append_exact_number(prefix, v.time);
-  prefix += ',';
+  // engine,step,time, once a step (buffers kept from step to step: no allocation per row)
+  prefix_ = label_;
+  prefix_ += ',';
+  prefix_ += std::to_string(v.step);
+  prefix_ += ',';
+  append_exact_number(prefix_, v.time);
+  prefix_ += ',';
   for (std::size_t i = 0; i < s.position.size(); ++i) {
     if (!v.present.empty() && !v.present[i]) continue;  // out of the world: no state, no row
-    line_ = prefix;
+    line_ = prefix_;
     line_ += names_[i];
     for (const double value : {s.position[i].x, s.position[i].y, s.velocity[i].x, s.velocity[i].y,
                                s.angle[i], v.displacement[i], v.penetration[i]}) {

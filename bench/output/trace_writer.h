@@ -55,13 +55,16 @@ class TraceWriter final : public StepObserver {
   std::string label_;
   std::vector<Row> last_;            // per body: its last written row
   std::vector<std::uint8_t> shown_;  // per body: its last row is a state (not none, not a leave)
-  std::string line_;
+  std::string line_, prefix_;
 };
 
-// The dense trace's sidecar (chainbench.trace/1): the scene, dt, the engines that finished with
-// their full specs, whether the run was interrupted, and every column with its unit.
 // Where the dense trace at `trace_path` keeps its metadata: beside it, trace_path + ".json".
 std::string trace_metadata_path(const std::string& trace_path);
+// Removes the file at `path` if it is a dense trace's metadata (chainbench.trace/1): true if it
+// did. Anything else there is left alone.
+bool remove_trace_metadata(const std::string& path);
+// The dense trace's sidecar (chainbench.trace/1): the scene, dt, the engines that finished with
+// their full specs, whether the run was interrupted, and every column with its unit.
 nlohmann::ordered_json trace_metadata_json(const Scene& scene,
                                            const std::vector<EngineSpec>& engines,
                                            bool interrupted);

@@ -3,6 +3,7 @@
 
 #include "scenes/scene_text.h"
 #include "support/input_error.h"
+#include "support/number_text.h"
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +20,12 @@
 
 namespace chainbench {
 namespace {
+
+// A JSON number as the messages write every number (support/number_text.h): a float exactly,
+// an integer as its digits.
+std::string number_text(const nlohmann::json& v) {
+  return v.is_number_float() ? exact_number(v.get<double>()) : v.dump();
+}
 
 using nlohmann::json;
 
@@ -115,9 +122,9 @@ class Reader {
       const bool whole = v.is_number_float() && std::isfinite(v.get<double>()) &&
                          v.get<double>() == std::floor(v.get<double>());
       problem(path, whole ? "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-                                "], got " + v.dump()
+                                "], got " + number_text(v)
                           : std::string("must be a whole number, got ") +
-                                (v.is_number() ? "a fraction" : type_name(v)));
+                                (v.is_number() ? number_text(v) : type_name(v)));
       return false;
     }
     const bool is_unsigned = v.is_number_unsigned();
@@ -126,7 +133,7 @@ class Reader {
     if ((is_unsigned && u > static_cast<std::uint64_t>(hi)) ||
         (!is_unsigned && (s < lo || s > hi))) {
       problem(path, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
-                        v.dump());
+                        number_text(v));
       return false;
     }
     out = static_cast<int>(is_unsigned ? static_cast<long long>(u) : s);
@@ -310,7 +317,7 @@ void read_body(Reader& r, const json& j, const std::string& at, std::size_t inde
     r.number(j["mass"], at + ".mass", b.mass);
   } else if (r.number(j["density"], at + ".density", v)) {
     if (!(v > 0.0)) {
-      r.problem(at + ".density", "must be > 0, got " + j["density"].dump());
+      r.problem(at + ".density", "must be > 0, got " + number_text(j["density"]));
     } else {
       b.mass = v * 4.0 * b.half_extents.x * b.half_extents.y;
     }

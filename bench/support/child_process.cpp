@@ -248,7 +248,9 @@ std::string signal_text(int signal) {
 std::string child_failure(const ChildOutcome& o, double timeout_s, const std::string& where) {
   std::string why;
   if (o.hang) {
-    why = "ran out of time (" + exact_number(timeout_s) + " s)";
+    why = "ran out of time (";
+    why += exact_number(timeout_s);
+    why += " s)";
   } else if (o.interrupted) {
     return "interrupted";
   } else if (o.signal != 0) {

@@ -89,7 +89,21 @@ OutputFile::OutputFile(const std::string& path, const char* option) : path_(path
   // /dev/stdout names whatever standard output is, a regular file too: replacing that file would
   // lose what the command prints there.
   const bool special = path.rfind("/dev/", 0) == 0 || path.rfind("/proc/", 0) == 0;
-  if (exists && (special || !S_ISREG(st.st_mode))) {
+  // The command's own standard output or error (/dev/stdout, /proc/self/fd/2, or a file they
+  // are redirected to): written through that stream, in order with what the command prints
+  // there; a second descriptor on the same file would write over it.
+  auto same_file = [&](int fd) {
+    struct stat of {};
+    return fstat(fd, &of) == 0 && of.st_dev == st.st_dev && of.st_ino == st.st_ino;
+  };
+  if (exists && special && same_file(STDOUT_FILENO)) {
+    shared_ = &std::cout;
+  } else if (exists && special && same_file(STDERR_FILENO)) {
+    shared_ = &std::cerr;
+  }
+  if (shared_) {
+    out_.std::ostream::rdbuf(shared_->rdbuf());
+  } else if (exists && (special || !S_ISREG(st.st_mode))) {
     out_.open(path, std::ios::binary | std::ios::trunc);  // a device or a pipe: no rename
   } else {
     // A symbolic link keeps pointing where it did: the file it names is replaced.
@@ -153,7 +167,7 @@ bool OutputFile::cut_back(long long at) {
 void OutputFile::finish() {
   if (finished_) return;
   out_.flush();
-  out_.close();
+  if (!shared_) out_.close();
   if (out_.fail()) throw OutputError("could not finish writing " + path_ + " (is the disk full?)");
   finished_ = true;
 }

@@ -4,7 +4,9 @@
 // over it once everything is written. Until then the target keeps what it held (or stays
 // absent); an output never committed (an error, Ctrl-C, SIGTERM, SIGHUP) removes its temporary.
 // A target that exists and is not a regular file (a pipe), or is under /dev or /proc
-// (/dev/stdout), is written directly.
+// (/dev/stdout), is written directly; one that is the command's own standard output or error
+// (/dev/stdout, wherever it is redirected) is written through that stream, in order with the
+// rest of what the command prints.
 #pragma once
 
 #include <fstream>
@@ -51,7 +53,8 @@ class OutputFile {
   std::string target_;  // what is replaced: the path with symbolic links followed
   std::string temp_;    // empty: written directly (a device or a pipe)
   int slot_ = -1;       // the temporary's place in the table the signal handler removes
-  std::ofstream out_;
+  std::ofstream out_;   // its buffer is shared_'s when the target is the command's own stream
+  std::ostream* shared_ = nullptr;  // std::cout or std::cerr, when the target is one of them
   bool finished_ = false, committed_ = false;
 };
 

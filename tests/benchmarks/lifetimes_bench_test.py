@@ -6,7 +6,7 @@ checks that each runs to the end: warm-up and timed steps must add and remove bo
 convention, or a body entering at the first timed step is never added and the first to leave is
 removed from an engine that never had it (which aborted the whole suite).
 
-    /usr/bin/python3 tests/benchmarks/lifetimes_bench_test.py build/bin/chainbench_bench
+    python3 tests/benchmarks/lifetimes_bench_test.py build/bin/chainbench_bench
 """
 import json
 import subprocess

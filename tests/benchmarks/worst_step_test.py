@@ -5,7 +5,7 @@ benchmark reports its slowest step beside its median (counters step_ms_max and s
 ms): present, finite, max >= median > 0, and max at least the mean time the benchmark reports (the
 mean of the same step times, given to it as manual time, never exceeds the largest of them).
 
-    /usr/bin/python3 tests/benchmarks/worst_step_test.py build/bin/chainbench_bench
+    python3 tests/benchmarks/worst_step_test.py build/bin/chainbench_bench
 """
 import json
 import math

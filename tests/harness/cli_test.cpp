@@ -123,6 +123,61 @@ TEST(Cli, CsvAndTraceAreWritten) {
       << "the sparse form keeps its metadata in its comments";
 }
 
+// A sparse trace written over a dense one takes the dense one's metadata with it: left, it would
+// describe another run. A FILE.json that is not a trace's metadata is left alone.
+TEST(Cli, ASparseTraceOverADenseOneRemovesItsStaleMetadata) {
+  const std::string path = temp("stale.trace.csv");
+  ASSERT_EQ(
+      chainbench("run --scene stack --steps 2 --engines chain --reference none --trace " + path)
+          .status,
+      0);
+  ASSERT_TRUE(std::filesystem::exists(path + ".json"));
+  const Result sparse = chainbench(
+      "run --scene stack --steps 2 --engines chain --reference none "
+      "--trace-format sparse --trace " +
+      path);
+  ASSERT_EQ(sparse.status, 0) << sparse.out;
+  EXPECT_FALSE(std::filesystem::exists(path + ".json"));
+  EXPECT_NE(sparse.out.find("removed " + path + ".json"), std::string::npos) << sparse.out;
+  {
+    std::ofstream other(path + ".json");
+    other << "{\"mine\": true}\n";
+  }
+  ASSERT_EQ(chainbench("run --scene stack --steps 2 --engines chain --reference none "
+                       "--trace-format sparse --trace " +
+                       path)
+                .status,
+            0);
+  EXPECT_TRUE(std::filesystem::exists(path + ".json")) << "a file of someone else's was removed";
+  std::filesystem::remove(path + ".json");
+}
+
+// --trace /dev/stdout with standard output sent to a file: the rows and the table both arrive,
+// in order (a second descriptor on the file would write the table over the rows).
+TEST(Cli, ATraceToStandardOutputRedirectedToAFileKeepsEveryRow) {
+  const std::string out = temp("stdout_trace.txt");
+  const Result r = run_command(std::string(CHAINBENCH_EXE) +
+                               " run --scene stack --steps 3 --engines chain --reference none "
+                               "--trace /dev/stdout > " +
+                               out + " 2>/dev/null");
+  ASSERT_EQ(r.status, 0);
+  std::ifstream in(out);
+  std::string first;
+  std::getline(in, first);
+  EXPECT_EQ(first, "engine,step,time,body,x,y,vx,vy,angle,displacement,penetration");
+  int rows = 0;
+  bool table = false;
+  for (std::string l; std::getline(in, l);) {
+    if (l.rfind("chain,", 0) == 0) {
+      EXPECT_FALSE(table) << "a row after the table";
+      ++rows;
+    }
+    if (l.rfind("scene stack", 0) == 0) table = true;
+  }
+  EXPECT_EQ(rows, 3 * 16);  // three steps of the stack's 16 bodies
+  EXPECT_TRUE(table);
+}
+
 // The dense trace (the default): a row per step and body, and its metadata in FILE.json.
 TEST(Cli, TheDenseTraceHasEveryRowAndItsMetadataBesideIt) {
   const std::string path = temp("d.trace.csv");

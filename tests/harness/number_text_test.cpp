@@ -112,7 +112,7 @@ TEST(NumberText, AValueJustPastItsBoundIsShownAsGiven) {
       R"("type": "dynamic", "center": [0, 0], "half_extents": [0.5, 0.5], "mass": 1)";
   const std::string dt =
       refusal(head + R"("dt": 1.0000001, "bodies": [{"name": "a", )" + box + "}]}");
-  EXPECT_NE(dt.find("f.json: dt: must be in [1e-6, 1] s, got 1.0000001"), std::string::npos) << dt;
+  EXPECT_NE(dt.find("f.json: dt: must be in [1e-06, 1] s, got 1.0000001"), std::string::npos) << dt;
   const std::string speed =
       refusal(head + R"("bodies": [{"name": "a", )" + box + R"(, "velocity": [100000.5, 0]}]})");
   EXPECT_NE(speed.find("bodies[0].velocity[0]: must be within +-1e5 m/s, got 100000.5"),

@@ -110,9 +110,9 @@ TEST(StressVerdicts, SlowProjectileStopsInTheStack) {
 }
 
 // At 500 m/s (8.3 m a step) the projectile crosses the stack in one step. The modern chain solver
-// sweeps a fast body against the other bodies' motion (solver/src/continuous.h), so it stops against
-// box2 as the backstop demands; Box2D 2.4 without bullets lets it through box2 as far as the
-// backstop (its continuous collision covers static bodies only): its centre goes into box2 by
+// sweeps a fast body against the other bodies' motion (solver/src/continuous.h), so it stops
+// against box2 as the backstop demands; Box2D 2.4 without bullets lets it through box2 as far as
+// the backstop (its continuous collision covers static bodies only): its centre goes into box2 by
 // one face and out by another, a tunnelling, besides the bounds it misses.
 TEST(StressVerdicts, FastProjectileStopsInChainButNotInBox2d) {
   const StressVerdict chain =
@@ -149,6 +149,12 @@ TEST(StressVerdicts, FailureInTheChildIsAnError) {
   EXPECT_EQ(v.verdict(), VerdictClass::kError);
   EXPECT_NE(v.error.find("out of range"), std::string::npos) << v.error;
   EXPECT_TRUE(v.fatal());
+  // Its JSON says it measured nothing as the stress JSON always has: flags false, figures 0.
+  const nlohmann::ordered_json c = stress_json({v}, false)["cases"][0];
+  for (const char* flag : {"finite", "in_bounds", "blow_up", "tunnelled"})
+    EXPECT_EQ(c[flag], false) << flag;
+  for (const char* figure : {"max_penetration", "peak_speed", "speed_bound"})
+    EXPECT_EQ(c[figure], 0.0) << figure;
 }
 
 // A known failure excuses the one verdict it names: the same case hanging or crashing still

@@ -16,7 +16,7 @@ ROOMS = {
     "scenes": ["model", "support"],
     "box2d_ref": ["model"],
     "chipmunk_ref": ["model"],
-    "box2d3": ["model", "support", "engines"],
+    "box2d3": ["model", "support"],
     "engines": ["model", "support", "box2d_ref", "chipmunk_ref"],
     "index": ["engines", "model", "support"],
     "judge": ["index", "engines", "model", "support"],

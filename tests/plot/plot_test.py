@@ -3,7 +3,7 @@
 """Tests scripts/plot.py (and its package, scripts/plotting/) on small synthetic inputs of each
 format, without chainbench.
 
-    /usr/bin/python3 tests/plot/plot_test.py
+    python3 tests/plot/plot_test.py
 
 Each subcommand runs once (with --svg) in a subprocess, the four at the same time; the checks are
 that every expected PNG and SVG is written, valid and not tiny, that the paths are printed, and

@@ -4,7 +4,7 @@
 whole scene in view, expected centres and bounds drawn, bodies named where they fit, and the
 per-body panel where the drawing cannot show the engines' differences.
 
-    /usr/bin/python3 tests/plot/states_test.py
+    python3 tests/plot/states_test.py
 """
 import json
 import sys

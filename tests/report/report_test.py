@@ -4,7 +4,7 @@
 whose figures come from the data, explains its columns, shows the stress verdicts as a grid, and
 links each scene's replay page with its screenshot inline.
 
-    /usr/bin/python3 tests/report/report_test.py
+    python3 tests/report/report_test.py
 """
 import json
 import subprocess
@@ -77,6 +77,9 @@ class ReportTest(unittest.TestCase):
                  dict(stress_case("wide", "tall stack", "bee", "wrong"), near_miss=True)]
         (root / "stress.json").write_text(json.dumps({"schema": "chainbench.stress/1",
                                                       "cases": cases}))
+        # The default suite's order, as scripts/run.sh leaves it: pile before stack; row, not in
+        # it, after both.
+        (root / "suite.txt").write_text("pile\nstack\n")
         result = subprocess.run([sys.executable, str(SCRIPTS / "report.py"), str(root)],
                                 capture_output=True, text=True, timeout=60)
         assert result.returncode == 0, result.stderr
@@ -117,6 +120,12 @@ class ReportTest(unittest.TestCase):
     def test_expect_cells_keep_metres_and_speeds_apart(self):
         self.assertIn("| pass (0 m, rest 0 m/s) |", self.text)
         self.assertIn("| **FAIL** (1.5 m) |", self.text)
+
+    def test_scenes_follow_the_suites_order(self):
+        headings = [line for line in self.text.splitlines() if line.startswith("### ")]
+        names = [h.split()[1].strip("`") for h in headings if h.split()[1].strip("`") in
+                 ("pile", "stack", "row")]
+        self.assertEqual(names, ["pile", "stack", "row"], headings)
 
     def test_columns_are_explained(self):
         self.assertIn("What the columns say:", self.text)

@@ -9,7 +9,7 @@ headline table (the moving scenes and the resting pyramid) goes between the READ
 full tables between those of docs/results.md (written whole when new), the same bytes every time,
 and stored accuracy runs are read back without running chainbench again.
 
-    /usr/bin/python3 tests/scripts/bench_table_test.py
+    python3 tests/scripts/bench_table_test.py
 """
 import importlib.util
 import json
@@ -437,8 +437,18 @@ class WritesTheFilesTest(unittest.TestCase):
                         {"engine": "B3", "label": "box2d3", "expect": {"pass": False, "max_error": 0.11}}],
                "reference_run": {"engine": "REF", "label": "ref", "expect": {"pass": True, "max_error": 0.02}},
                "comparison": [{"engine": "FAST", "final_position_error": {"max": 0.02}}]}
+        # A stored run that lacks an engine timed on its row is refused, not read as if whole.
         for _, _, path, _ in plan:
             Path(path).write_text(json.dumps(run), encoding="utf-8")
+        done = self.run_script("--reuse-runs", "--runs", str(runs_dir), check=False)
+        self.assertNotEqual(done.returncode, 0)
+        self.assertIn("the stored run has no", done.stderr)
+        for _, args, path, _ in plan:  # every engine the row timed, as a real run holds them
+            whole = dict(run)
+            named = {r["label"] for r in run["runs"]}
+            whole["runs"] = run["runs"] + [{"engine": e.upper(), "label": e} for e in
+                                           args[args.index("--engines") + 1].split(",") if e not in named]
+            Path(path).write_text(json.dumps(whole), encoding="utf-8")
         self.run_script("--reuse-runs", "--runs", str(runs_dir))
         self.assertIn("| `rain` cols=1,000 | 11,910 | 1.000 | 0 m | 4.0x (misses) | 8.0x · 5.0x |",
                       self.readme.read_text(encoding="utf-8"))

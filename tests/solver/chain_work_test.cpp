@@ -188,8 +188,8 @@ TEST(ChainWork, OverlappingPileStepSearchWorkPerBodyIsBounded) {
 
 // A fast body used to widen the broadphase's one global displacement margin: the step after the
 // sweep rebuilt the grid and rescanned the near pairs, which roughly doubled a step of a resting
-// pyramid with one fast box flying past. The box is now filed again where the sweep left it, and
-// the sweep's build serves the whole step.
+// pyramid with one fast box flying past. The box is now filed again where continuous collision left
+// it, and its build serves the whole step.
 TEST(ChainWork, OneFastBodyDoesNotDoubleAStepsSearchWork) {
   constexpr int kSteps = 30;
   // Candidates examined by the first step (which builds the grid and scans the near pairs) and by

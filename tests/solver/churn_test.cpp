@@ -144,8 +144,9 @@ TEST(Churn, ABodyFallsThroughTheSpaceADestroyedOneLeft) {
 // each other and rest at exact heights: one dropped on the floor at y = 0.5, one dropped on a
 // resting box at y = 1.5; one created 0.3 m deep in a resting box (moving too little to be filed
 // again by its own motion) is pushed out on top of it, y = 1.5; and a box thrown down at 300 m/s
-// onto a 5 cm slab stops on it (the sweep sees it), at y = 0.05 + 0.5. No body is fast until the
-// throw, so that nothing builds the grid anew and the created bodies are found as filed again.
+// onto a 5 cm slab stops on it (continuous collision sees it), at y = 0.05 + 0.5. No body is fast
+// until the throw, so that nothing builds the grid anew and the created bodies are found as filed
+// again.
 TEST(Churn, BodiesCreatedIntoEmptySlotsCollideAsAnyOther) {
   World w(world_def(Variant::kModern, VelocityRule::kInelastic));
   add_floor(w, 300.0);
@@ -176,7 +177,7 @@ TEST(Churn, BodiesCreatedIntoEmptySlotsCollideAsAnyOther) {
   EXPECT_NEAR(w.position(on_base).y, 1.5, 1e-9);
   EXPECT_NEAR(w.position(resting).y, 0.5, 1e-9);
   EXPECT_NEAR(w.position(inside).y, 1.5, 1e-9);
-  // Thrown down at 300 m/s into an empty slot, onto the slab: the sweep stops it there.
+  // Thrown down at 300 m/s into an empty slot, onto the slab: continuous collision stops it there.
   w.destroy_body(on_floor);
   BodyDef thrown = dynamic_box(20.0, 8.0);
   thrown.velocity = {0.0, -300.0};

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Continuous collision (solver/src/continuous.h): no dynamic body passes through a static or kinematic
-// body at any speed up to kMaxSpeed and any dt, and a fast dynamic body does not pass through the
-// dynamic bodies in its way.
+// Continuous collision (solver/src/continuous.h): no dynamic body passes through a static or
+// kinematic body at any speed up to kMaxSpeed and any dt, and a fast dynamic body does not pass
+// through the dynamic bodies in its way.
 #include "world_helpers.h"
 
 #include <gtest/gtest.h>
@@ -194,8 +194,8 @@ double analytic_push(VelocityRule rule, double v, double dt, double pusher, doub
 }
 
 // Issue 1: a pusher driven at 27 m/s moves 0.45 m a step, more than half its half extent, so it
-// counts as fast; the sweep used to stop it a quarter box into the first box, and the row moved
-// 5 m/s instead of 27 / 3 = 9 m/s (zero rule, two boxes of the pusher's mass).
+// counts as fast; continuous collision used to stop it a quarter box into the first box, and the
+// row moved 5 m/s instead of 27 / 3 = 9 m/s (zero rule, two boxes of the pusher's mass).
 TEST(Continuous, FastDrivenPusherPushesTwoBoxesAtAThirdOfItsSpeed) {
   World w(world_def(Variant::kModern, VelocityRule::kZero, {0.0, 0.0}));
   const BodyId pusher = w.create_body(dynamic_box(0.0, 0.0));

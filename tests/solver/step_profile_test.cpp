@@ -17,8 +17,9 @@ namespace {
 
 constexpr double kDt = 1.0 / 60.0;
 
-// A stack, rough crates on a moving platform (friction), a fast box fired at a wall (the sweep),
-// two boxes created overlapping (pushes in the first step) and a driven pusher against a row.
+// A stack, rough crates on a moving platform (friction), a fast box fired at a wall (continuous
+// collision), two boxes created overlapping (pushes in the first step) and a driven pusher against
+// a row.
 std::vector<BodyId> build(World& w) {
   std::vector<BodyId> ids;
   ids.push_back(add_floor(w));

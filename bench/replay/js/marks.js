@@ -36,7 +36,7 @@ class Marks {
     return this.model.engines[k].label;
   }
 
-  // An expectation entry as the scene states it (schema of bench/analysis/report.h's
+  // An expectation entry as the scene states it (schema of bench/output/report.h's
   // expectation_json): when it applies, its targets and its bounds.
   expectation(e, index) {
     const m = this.model;

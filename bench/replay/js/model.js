@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The replay's data as the views ask for it: bodies, engines and each engine's centre of every
-// body at any step, from the page's JSON (written by bench/analysis/replay_page.cpp).
+// body at any step, from the page's JSON (written by bench/output/replay_page.cpp).
 
 const KIND_STATIC = 0;
 const KIND_KINEMATIC = 1;

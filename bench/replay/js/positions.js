@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Reads an engine's positions as the page stores them (bench/analysis/position_stream.h has
+// Reads an engine's positions as the page stores them (bench/output/position_stream.h has
 // the byte layout): base64 text of varint records, one state after another, each body's centre
 // a whole number of quanta from its initial centre, only the bodies that changed written.
 

@@ -3,17 +3,58 @@
 
 #include "support/text_table.h"
 
+#include <cmath>
 #include <string_view>
 
 namespace chainbench {
 namespace {
 
+using nlohmann::ordered_json;
+
 std::optional<double> flag(const std::optional<bool>& b) {
   return b ? std::optional<double>(*b ? 1.0 : 0.0) : std::nullopt;
 }
 
-// The rows, in the order the run JSON writes them. `details` below names what the run JSON
-// writes beside a row (output/report.cpp writes those).
+ordered_json number(double v) {
+  return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr);  // JSON has no NaN
+}
+
+void worst_overlap(ordered_json& m, const Metrics& mt, const Scene& s) {
+  if (!mt.worst_overlap) {
+    m["worst_overlap"] = nullptr;  // measured: nothing overlapped
+    return;
+  }
+  const PairOverlap& w = *mt.worst_overlap;
+  m["worst_overlap"] = {{"bodies", {s.bodies[w.a].name, s.bodies[w.b].name}},
+                        {"depth", number(w.depth)},
+                        {"tolerance", number(w.tolerance)},
+                        {"step", w.step}};
+}
+
+void peak_where(ordered_json& m, const Metrics& mt, const Scene& s) {
+  m["peak_speed_body"] = s.bodies[mt.peak_speed_body].name;
+  m["peak_speed_step"] = mt.peak_speed_step;
+}
+
+void unbounded_why(ordered_json& m, const Metrics& mt, const Scene&) {
+  if (!mt.speed_unbounded.empty()) m["speed_unbounded"] = mt.speed_unbounded;
+}
+
+void escaped_names(ordered_json& m, const Metrics& mt, const Scene& s) {
+  m["escaped"] = ordered_json::array();
+  for (const std::size_t b : mt.escaped)
+    m["escaped"].push_back(s.bodies[b].name);
+}
+
+void first_tunnel(ordered_json& m, const Metrics& mt, const Scene& s) {
+  if (!mt.tunnel) return;
+  m["tunnelling"] = {{"body", s.bodies[mt.tunnel->body].name},
+                     {"through", s.bodies[mt.tunnel->through].name},
+                     {"step", mt.tunnel->step},
+                     {"count", mt.tunnel_count}};
+}
+
+// The rows, in the order the run JSON writes them.
 const MetricDef kMetrics[] = {
     {"efd_total", MetricGroup::kDisplacement, MetricKind::kNumber, "m", "sum over body-steps",
      "lower is better; 0 for bodies that move as their velocities say",
@@ -33,29 +74,37 @@ const MetricDef kMetrics[] = {
      "deepest overlap of any pair (at least one dynamic), along the axis of least penetration", "",
      "max_penetration", "max pen m", "max_penetration",
      kRunCsv | kRunTable | kSweep | kStressJson | kStressTable,
-     [](const Metrics& m) { return m.max_penetration; }},
+     [](const Metrics& m) { return m.max_penetration; }, worst_overlap, "`worst_overlap`",
+     "the overlap deepest relative to its tolerance: `bodies` [name, name], `depth` m, "
+     "`tolerance` m, `step`; `null` when nothing overlapped"},
     {"peak_speed", MetricGroup::kStability, MetricKind::kNumber, "m/s", "largest of any body-step",
      "at most `speed_bound`", "fastest displacement of a body in one step / dt, from positions", "",
      "peak_speed", "peak m/s", "", kRunCsv | kRunTable | kStressJson | kStressTable,
-     [](const Metrics& m) { return m.peak_speed; }},
+     [](const Metrics& m) { return m.peak_speed; }, peak_where,
+     "`peak_speed_body`, `peak_speed_step`",
+     "where it happened (the first body and step 0 when nothing moved)"},
     {"speed_bound", MetricGroup::kStability, MetricKind::kNumber, "m/s",
      "the scene's: the largest of its bodies' bounds", "a bound, not a score",
      "the largest per-body speed the scene allows; null when the scene bounds none", "",
-     "speed_bound", "", "", kStressJson, [](const Metrics& m) { return m.speed_bound; }},
+     "speed_bound", "", "", kStressJson, [](const Metrics& m) { return m.speed_bound; },
+     unbounded_why, "`speed_unbounded`", "why no bound exists; present only then"},
     {"finite", MetricGroup::kStability, MetricKind::kFlag, "", "every body-step", "true is right",
      "every position and velocity stayed finite", "", "finite", "", "", kRunCsv | kStressJson,
      [](const Metrics& m) { return flag(m.finite); }},
     {"in_bounds", MetricGroup::kStability, MetricKind::kFlag, "", "every body at the end",
      "true is right", "no body ended farther from its start than the scene can send it", "",
-     "in_bounds", "", "", kRunCsv | kStressJson,
-     [](const Metrics& m) { return flag(m.in_bounds); }},
+     "in_bounds", "", "", kRunCsv | kStressJson, [](const Metrics& m) { return flag(m.in_bounds); },
+     escaped_names, "`escaped`",
+     "the names of the bodies that ended out of bounds (the CSV: how many)"},
     {"blow_up", MetricGroup::kStability, MetricKind::kFlag, "",
      "any body over any stretch of steps", "false is right",
      "some body travelled, over some stretch of steps, more than its speed bound allows", "",
      "blow_up", "", "", kStressJson, [](const Metrics& m) { return flag(m.blow_up); }},
     {"tunnelled", MetricGroup::kStability, MetricKind::kFlag, "", "any pair over any step",
      "false is right", "a body passed through another", "", "tunnelled", "", "",
-     kRunCsvLate | kStressJson, [](const Metrics& m) { return flag(m.tunnelled); }},
+     kRunCsvLate | kStressJson, [](const Metrics& m) { return flag(m.tunnelled); }, first_tunnel,
+     "`tunnelling`",
+     "{`body`, `through`, `step`, `count`}: the first case, and how many; present only when true"},
     {"escaped", MetricGroup::kStability, MetricKind::kCount, "", "bodies at the end", "0 is right",
      "bodies that ended farther from their start than the scene can send them", "", "", "", "",
      kRunCsvLate,
@@ -63,25 +112,6 @@ const MetricDef kMetrics[] = {
        return m.in_bounds ? std::optional<double>(static_cast<double>(m.escaped.size()))
                           : std::nullopt;
      }},
-};
-
-// What the run JSON writes beside a row, for the docs.
-struct Detail {
-  const char* metric;
-  const char* keys;
-  const char* meaning;
-};
-const Detail kDetails[] = {
-    {"max_penetration", "`worst_overlap`",
-     "the overlap deepest relative to its tolerance: `bodies` [name, name], `depth` m, "
-     "`tolerance` m, `step`; `null` when nothing overlapped"},
-    {"peak_speed", "`peak_speed_body`, `peak_speed_step`",
-     "where it happened (the first body and step 0 when nothing moved)"},
-    {"speed_bound", "`speed_unbounded`", "why no bound exists; present only then"},
-    {"in_bounds", "`escaped`",
-     "the names of the bodies that ended out of bounds (the CSV: how many)"},
-    {"tunnelled", "`tunnelling`",
-     "{`body`, `through`, `step`, `count`}: the first case, and how many; present only when true"},
 };
 
 }  // namespace
@@ -164,10 +194,9 @@ std::string metric_docs_table() {
         def.outputs & (kRunCsv | kRunCsvLate) ? concat({"`", def.name, "`"}) : std::string("-");
     out += concat({"| ", key, " | ", csv, " | ", to_string(def.group), " | ", unit, " | ",
                    def.aggregate, " | ", def.reading, " | ", def.help, " |\n"});
-    for (const Detail& d : kDetails) {
-      if (std::string_view(d.metric) == def.name)
-        out +=
-            concat({"| ", d.keys, " | - | ", to_string(def.group), " | | | | ", d.meaning, " |\n"});
+    if (def.details) {
+      out += concat({"| ", def.details_keys, " | - | ", to_string(def.group), " | | | | ",
+                     def.details_help, " |\n"});
     }
   }
   return out;

@@ -8,6 +8,9 @@
 #pragma once
 
 #include "judge/metrics.h"
+#include "model/scene.h"
+
+#include <nlohmann/json.hpp>
 
 #include <cstdint>
 #include <optional>
@@ -52,6 +55,11 @@ struct MetricDef {
   const char* sweep_key;                           // the sweep JSON's key, when the sweep shows it
   std::uint32_t outputs;                           // MetricOutput bits
   std::optional<double> (*value)(const Metrics&);  // flags as 1 or 0; empty when not measured
+  // What the run JSON writes beside the value, into the `metrics` block (worst_overlap beside
+  // max_penetration, say), and those keys and their meaning for the docs; none when null.
+  void (*details)(nlohmann::ordered_json& metrics, const Metrics&, const Scene&) = nullptr;
+  const char* details_keys = "";
+  const char* details_help = "";
 };
 
 // Every metric, in the order the run JSON writes them.

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// What `chainbench run` reports: a table for people, JSON (chainbench.run/1,
-// docs/output-formats.md §2) and CSV (§3) for tools.
+// What `chainbench run` reports: a table for people (report.cpp), JSON (chainbench.run/1,
+// docs/output-formats.md §2; run_json.cpp) and CSV (§3; run_csv.cpp) for tools.
 #pragma once
 
 #include "judge/engine_run.h"
@@ -47,6 +47,10 @@ std::vector<LimitNote> exceeded_limits(const RunReport& report);
 
 // Fills report.comparison from report.runs and the reference.
 void compare(RunReport& report);
+// The reference's run (one of report.runs, or report.reference), or null without one.
+const EngineRun* reference_of(const RunReport& report);
+// The comparison of `run` with the reference, or null (the reference itself, or no reference).
+const Comparison* comparison_of(const RunReport& report, const EngineRun& run);
 
 void print_run_table(std::ostream& out, const RunReport& report);
 nlohmann::ordered_json run_json(const RunReport& report);

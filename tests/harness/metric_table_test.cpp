@@ -27,6 +27,8 @@ TEST(MetricTable, EveryRowIsWholeAndNamedOnce) {
     EXPECT_NE(*def.aggregate, '\0') << def.name;
     EXPECT_NE(*def.reading, '\0') << def.name;
     EXPECT_NE(def.value, nullptr) << def.name;
+    EXPECT_EQ(def.details != nullptr, *def.details_keys != '\0') << def.name;
+    EXPECT_EQ(def.details != nullptr, *def.details_help != '\0') << def.name;
     if (*def.json_key) {
       EXPECT_TRUE(json_keys.insert(std::string(def.json_block) + "." + def.json_key).second);
     } else {

@@ -13,17 +13,15 @@ file, with exit status 2. Needs only the standard library and matplotlib.
 """
 import argparse
 import inspect
-import os
 import sys
 from pathlib import Path
 
-# The plotting package lives next to this script; found from here, plot.py runs from any directory.
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plotting.common import InputError  # noqa: E402
-from plotting.scaling import load_bench, plot_scaling  # noqa: E402
-from plotting.states import load_run, plot_states  # noqa: E402
-from plotting.sweep import load_sweep, plot_sweep  # noqa: E402
-from plotting.trace import load_trace, plot_trace  # noqa: E402
+# The package lives next to this script, whose folder Python puts first on the path.
+from chainbench_tools.plotting.common import InputError
+from chainbench_tools.plotting.scaling import load_bench, plot_scaling
+from chainbench_tools.plotting.states import load_run, plot_states
+from chainbench_tools.plotting.sweep import load_sweep, plot_sweep
+from chainbench_tools.plotting.trace import load_trace, plot_trace
 
 
 def main(argv=None):

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Tests scripts/plot.py (and its package, scripts/plotting/) on small synthetic inputs of each
+"""Tests scripts/plot.py (and its package, scripts/chainbench_tools/plotting/) on small synthetic inputs of each
 format, without chainbench.
 
     python3 tests/plot/plot_test.py
@@ -130,11 +130,12 @@ def trace_csv(rows_left_out=True):
 
 
 def plotting(module):
-    """scripts/plotting/MODULE imported (it imports matplotlib only when it draws)."""
+    """scripts/chainbench_tools/plotting/MODULE imported (it imports matplotlib only when it
+    draws)."""
     sys.dont_write_bytecode = True  # no __pycache__ in scripts/
     if str(PLOT.parent) not in sys.path:
         sys.path.insert(0, str(PLOT.parent))
-    return importlib.import_module(f"plotting.{module}")
+    return importlib.import_module(f"chainbench_tools.plotting.{module}")
 
 
 class Drawing:

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Tests the states plot (scripts/plotting/states.py, expected.py) on a synthetic squeeze: the
+"""Tests the states plot (scripts/chainbench_tools/plotting/states.py, expected.py) on a synthetic squeeze: the
 whole scene in view, expected centres and bounds drawn, bodies named where they fit, and the
 per-body panel where the drawing cannot show the engines' differences.
 

@@ -11,7 +11,6 @@ and stored accuracy runs are read back without running chainbench again.
 
     python3 tests/scripts/bench_table_test.py
 """
-import importlib.util
 import json
 import os
 import stat
@@ -21,10 +20,11 @@ import tempfile
 import unittest
 from pathlib import Path
 
-SCRIPT = Path(__file__).resolve().parent.parent.parent / "scripts" / "bench_table.py"
-spec = importlib.util.spec_from_file_location("bench_table", SCRIPT)
-bench_table = importlib.util.module_from_spec(spec)
-spec.loader.exec_module(bench_table)
+SCRIPTS = Path(__file__).resolve().parent.parent.parent / "scripts"
+SCRIPT = SCRIPTS / "bench_table.py"
+sys.path.insert(0, str(SCRIPTS))  # the package beside the scripts, as they find it
+from chainbench_tools import bench_table  # noqa: E402
+from chainbench_tools.records import AccuracyRun  # noqa: E402
 
 CONTEXT = {"chainbench_subject": "fast", "chainbench_reference": "ref",
            "chainbench_family_pile": "random_pile n layers=5 friction=0.5",
@@ -88,8 +88,8 @@ class BenchTableTest(unittest.TestCase):
         self.assertIn("| 20.0x |", lines[3])
 
     def test_accuracy_sits_beside_the_speed(self):
-        accuracy = {("stack", ""): (run_json(0.0094, (True, True)), None),
-                    ("pile", "1000"): (run_json(0.09, (True, False)), 60)}
+        accuracy = {("stack", ""): AccuracyRun(run_json(0.0094, (True, True)), None),
+                    ("pile", "1000"): AccuracyRun(run_json(0.09, (True, False)), 60)}
         lines = tables_after_summary(CONTEXT, RUNS, accuracy)
         self.assertIn("| ref / fast | fast vs ref max m | meets the scene's answer |", lines[0])
         self.assertIn("| 10.0x | 0.0094 | `fast`, `ref` |", lines[2])
@@ -111,7 +111,7 @@ class MovingTablesTest(unittest.TestCase):
                "reference_run": {"engine": "REF", "label": "ref",
                                  "expect": {"pass": True, "max_error": 0.0168}},
                "comparison": [{"engine": "FAST", "final_position_error": {"max": 0.02}}]}
-        lines = tables_after_summary(MOVING_CONTEXT, MOVING_RUNS, {("rain", "1000"): (run, None)})
+        lines = tables_after_summary(MOVING_CONTEXT, MOVING_RUNS, {("rain", "1000"): AccuracyRun(run, None)})
         self.assertIn("| error |", lines[2])
         self.assertEqual(lines[4], "| `rain` cols=1,000 | 11,910 | 1.000 | 0 m | 8.0x (0.017 m) | "
                                    "5.0x (0.071 m, misses) |")
@@ -356,7 +356,7 @@ class CompactTableTest(unittest.TestCase):
                "reference_run": {"engine": "REF", "label": "ref", "expect": {"pass": True, "max_error": 0.02}},
                "comparison": []}
         lines = bench_table.compact_table(COMPACT_CONTEXT, COMPACT_RUNS,
-                                          {("rain", "1000"): (run, None)}).splitlines()
+                                          {("rain", "1000"): AccuracyRun(run, None)}).splitlines()
         self.assertIn("`(misses)`: that engine misses the scene's stated answer", lines[0])
         self.assertEqual(lines[2], "| scene | bodies | `fast` ms/step | `fast` error | vs `box2d3` | "
                                    "vs `ref`† (sleep off · on) |")
@@ -429,7 +429,7 @@ class WritesTheFilesTest(unittest.TestCase):
     def test_stored_accuracy_runs_are_read_back_without_chainbench(self):
         runs_dir = self.dir / "runs"
         plan = bench_table.accuracy_plan(COMPACT_CONTEXT, COMPACT_RUNS, "chainbench", str(runs_dir))
-        self.assertEqual([group for group, *_ in plan], [("pyramid", "100"), ("rain", "1000")])
+        self.assertEqual([step.group for step in plan], [("pyramid", "100"), ("rain", "1000")])
         done = self.run_script("--reuse-runs", "--runs", str(runs_dir), check=False)
         self.assertNotEqual(done.returncode, 0)  # nothing stored, nothing to run it with
         self.assertIn("no stored accuracy run of pyramid 100", done.stderr)
@@ -438,12 +438,13 @@ class WritesTheFilesTest(unittest.TestCase):
                "reference_run": {"engine": "REF", "label": "ref", "expect": {"pass": True, "max_error": 0.02}},
                "comparison": [{"engine": "FAST", "final_position_error": {"max": 0.02}}]}
         # A stored run that lacks an engine timed on its row is refused, not read as if whole.
-        for _, _, path, _ in plan:
-            Path(path).write_text(json.dumps(run), encoding="utf-8")
+        for step in plan:
+            Path(step.path).write_text(json.dumps(run), encoding="utf-8")
         done = self.run_script("--reuse-runs", "--runs", str(runs_dir), check=False)
         self.assertNotEqual(done.returncode, 0)
         self.assertIn("the stored run has no", done.stderr)
-        for _, args, path, _ in plan:  # every engine the row timed, as a real run holds them
+        for step in plan:  # every engine the row timed, as a real run holds them
+            args, path = step.args, step.path
             whole = dict(run)
             named = {r["label"] for r in run["runs"]}
             whole["runs"] = run["runs"] + [{"engine": e.upper(), "label": e} for e in

@@ -3,6 +3,7 @@
 #include "cli/commands.h"
 #include "engines/engine_spec.h"
 #include "engines/registry.h"
+#include "judge/metric_table.h"
 #include "scenes/scene_library.h"
 #include "support/number_text.h"
 #include "support/text_table.h"
@@ -188,7 +189,18 @@ void add_list_commands(CLI::App& app, int* status) {
                    "only the names of a suite's scenes, one a line, in its order: default (what "
                    "scripts/run.sh runs)")
       ->check(CLI::IsMember({"default"}));
-  list->callback([status, suite] {
+  auto metrics = std::make_shared<bool>(false);
+  list->add_flag("--metrics", *metrics,
+                 "the metrics a run measures, as a Markdown table: key, CSV column, group, unit, "
+                 "how the steps make it, how it is read, meaning (docs/output-formats.md §2.5 "
+                 "holds this text)")
+      ->excludes("--suite");
+  list->callback([status, suite, metrics] {
+    if (*metrics) {
+      std::cout << metric_docs_table();
+      *status = 0;
+      return;
+    }
     if (suite->empty()) {
       *status = list_scenes();
       return;

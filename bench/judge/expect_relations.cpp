@@ -125,22 +125,23 @@ std::string describe_relation(const Scene& scene, const ExpectOutcome& o) {
   const Expectation& e = scene.expect[o.index];
   const std::string& body = scene.bodies[e.body].name;
   const std::string other = o.other ? scene.bodies[*o.other].name : std::string("?");
-  const std::string limit = concat({", tolerance ", fmt_g(e.tolerance), " m"});
+  const int d = digits_apart(o.value, e.tolerance);  // the measure not read as its tolerance
+  const std::string limit = concat({", tolerance ", fmt_g(e.tolerance, d), " m"});
   switch (e.kind) {
     case Kind::kAbove:
-      return concat({body, ": bottom ", fmt_g(o.value), " m below the top of ", other, limit});
+      return concat({body, ": bottom ", fmt_g(o.value, d), " m below the top of ", other, limit});
     case Kind::kBelow:
-      return concat({body, ": top ", fmt_g(o.value), " m above the bottom of ", other, limit});
+      return concat({body, ": top ", fmt_g(o.value, d), " m above the bottom of ", other, limit});
     case Kind::kOn:
       if (o.beside) {
         return concat({body, ": not over ", other, " along x (",
-                       o.value > 0.0 ? concat({fmt_g(o.value), " m beside it"})
+                       o.value > 0.0 ? concat({fmt_g(o.value, d), " m beside it"})
                                      : std::string("their sides only touch"),
                        "), so not resting on it"});
       }
-      return concat({body, ": ", fmt_g(o.value), " m from resting on ", other, limit});
+      return concat({body, ": ", fmt_g(o.value, d), " m from resting on ", other, limit});
     case Kind::kSqueezed:
-      return o.other ? concat({body, ": a gap of ", fmt_g(o.value), " m to ", other,
+      return o.other ? concat({body, ": a gap of ", fmt_g(o.value, d), " m to ", other,
                                " on the looser side", limit})
                      : concat({body, ": no static or kinematic body on two opposite sides"});
     default:

@@ -72,29 +72,31 @@ std::string describe(const Scene& scene, const ExpectOutcome& o) {
   const std::string head = concat({"expect[", std::to_string(o.index), "] ", to_string(e.kind)});
   if (o.state < 0) return concat({head, ": never checked (the run stopped before its window)"});
   const std::string& body = o.body ? scene.bodies[*o.body].name : head;
+  // The measure and the limit it is held to, written apart (digits_apart).
+  const int d = digits_apart(o.value, o.limit);
   std::string what;
   switch (e.kind) {
     case Expectation::Kind::kCenter:
       what = concat(
-          {body, ": ", fmt_g(o.value), " m from ", point(e.center), ", at ", point(o.position)});
+          {body, ": ", fmt_g(o.value, d), " m from ", point(e.center), ", at ", point(o.position)});
       break;
     case Expectation::Kind::kMoved: {
       const Vec2d start = scene.bodies[*o.body].center;
       what =
-          concat({body, ": ", fmt_g(o.value), " m from ",
+          concat({body, ": ", fmt_g(o.value, d), " m from ",
                   point({start.x + e.moved.x, start.y + e.moved.y}), ", at ", point(o.position)});
       break;
     }
     case Expectation::Kind::kBounds:
-      what = concat({body, ": ", fmt_g(o.value), " m outside, at ", point(o.position)});
+      what = concat({body, ": ", fmt_g(o.value, d), " m outside, at ", point(o.position)});
       break;
     case Expectation::Kind::kAtRest:
-      what = concat({body, ": moving at ", fmt_g(o.value), " m/s, limit ", fmt_g(e.speed)});
+      what = concat({body, ": moving at ", fmt_g(o.value, d), " m/s, limit ", fmt_g(e.speed, d)});
       break;
     case Expectation::Kind::kNoOverlap:
       what = o.body ? concat({scene.bodies[*o.body].name, " / ", scene.bodies[*o.other].name,
-                              ": overlap ", fmt_g(o.value), " m, limit ", fmt_g(e.depth)})
-                    : concat({"overlap ", fmt_g(o.value), " m, limit ", fmt_g(e.depth)});
+                              ": overlap ", fmt_g(o.value, d), " m, limit ", fmt_g(e.depth, d)})
+                    : concat({"overlap ", fmt_g(o.value, d), " m, limit ", fmt_g(e.depth, d)});
       break;
     case Expectation::Kind::kAbove:
     case Expectation::Kind::kBelow:
@@ -109,7 +111,7 @@ std::string describe(const Scene& scene, const ExpectOutcome& o) {
     margin = " (a near miss: within a tenth of 5% of the body's size)";
   } else if (!o.pass && e.kind != Expectation::Kind::kBounds && !o.beside) {
     const char* unit = is_speed(e.kind) ? " m/s" : " m";
-    margin = concat({", ", fmt_g(o.margin), unit, " beyond its ", fmt_g(o.limit), unit,
+    margin = concat({", ", fmt_g(o.margin), unit, " beyond its ", fmt_g(o.limit, d), unit,
                      o.near ? " (a near miss: within a tenth of it)" : ""});
   }
   return concat({head, " ", what, margin, " ", at_state(o.state)});

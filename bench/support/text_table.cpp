@@ -140,6 +140,14 @@ std::string fmt_g(double v, int digits) {
   return buf;
 }
 
+int digits_apart(double a, double b, int at_least) {
+  if (a == b) return at_least;
+  int digits = at_least;
+  while (digits < 17 && fmt_g(a, digits) == fmt_g(b, digits))
+    ++digits;
+  return digits;
+}
+
 std::string fmt_ms(double ms) {
   char buf[32];
   std::snprintf(buf, sizeof buf, ms >= 100 ? "%.0f" : (ms >= 1 ? "%.2f" : "%.4f"), ms);

@@ -37,7 +37,10 @@ std::string concat(std::initializer_list<std::string_view> parts);
 
 // Short renderings for tables: "0.0123", "1.2e-07", "-" for missing.
 std::string fmt_g(double v, int digits = 3);
+// The significant digits, `at_least` or more (up to 17), at which fmt_g writes a and b apart: a
+// measure beside the limit it broke must not read as equal to it ("0.15855 m beyond its
+// 0.1585 m", not "0.159 ... 0.159"). at_least when they are equal.
+int digits_apart(double a, double b, int at_least = 3);
 std::string fmt_ms(double ms);
-
 
 }  // namespace chainbench

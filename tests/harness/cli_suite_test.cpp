@@ -23,3 +23,19 @@ TEST(CliSuite, ListSuitePrintsTheDefaultSuiteOneNameALine) {
 }
 
 }  // namespace
+
+namespace {
+
+// `list --metrics` prints the metric table the docs hold (docs/output-formats.md §2.5).
+TEST(CliSuite, ListMetricsPrintsTheMetricTable) {
+  const cli::Result r = cli::chainbench("list --metrics");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out.rfind("| key | run CSV | group | unit |", 0), 0u) << r.out;
+  for (const char* key : {"`max_penetration`", "`energy_free_displacement.per_body_step`",
+                          "`tunnelling`", "`escaped`"}) {
+    EXPECT_NE(r.out.find(key), std::string::npos) << key;
+  }
+  EXPECT_EQ(cli::chainbench("list --metrics --suite default").status, 2);
+}
+
+}  // namespace

@@ -60,8 +60,8 @@ TEST(MetricTable, TheDocsHoldTheTableItWrites) {
   ASSERT_NE(end, std::string::npos);
   const std::size_t first = docs.find('\n', begin) + 1;
   EXPECT_EQ(docs.substr(first, end - first), metric_docs_table())
-      << "docs/output-formats.md §2.5 differs from metric_docs_table(): paste its text between "
-         "the markers";
+      << "docs/output-formats.md §2.5 differs from the metric table: put the output of "
+         "`build/bin/chainbench list --metrics` between the markers";
 }
 
 RunReport report_of(const Scene& scene, MetricSelection selection) {

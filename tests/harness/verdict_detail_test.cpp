@@ -7,9 +7,11 @@
 #include "run/runner.h"
 #include "scenes/scene_file.h"
 #include "scenes/scene_library.h"
+#include "support/text_table.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <sstream>
 #include <string>
 
@@ -192,6 +194,33 @@ TEST(VerdictDetail, NearMissesAreToldFromClearOnes) {
   print_stress_table(tally, {a, b});
   EXPECT_NE(tally.str().find("2 runs: 1 wrong, 1 wrong (near miss)"), std::string::npos)
       << tally.str();
+}
+
+}  // namespace
+}  // namespace chainbench
+
+namespace chainbench {
+namespace {
+
+// A measure beside the limit it broke is written with the digits that keep them apart: the box
+// ends 2 m from its expected centre, against a tolerance of 1.9996 m (3 digits would write both
+// as 2); its speed of 1 m/s against a rest limit of 0.9996 m/s likewise.
+TEST(VerdictDetail, AMeasureNeverReadsAsTheLimitItBroke) {
+  Scene s = drifting_box();
+  s.expect[0].tolerance = 1.9996;
+  s.expect[1].speed = 0.9996;
+  const EngineRun r = run(s, "chain");
+  ASSERT_TRUE(r.verdict.has_value());
+  std::string all;
+  for (const Finding& f : r.verdict->findings)
+    all += f.detail + "\n";
+  EXPECT_NE(all.find("box: 2 m from (-1, 0)"), std::string::npos) << all;
+  EXPECT_NE(all.find("beyond its 1.9996 m"), std::string::npos) << all;
+  EXPECT_NE(all.find("moving at 1 m/s, limit 0.9996"), std::string::npos) << all;
+  EXPECT_EQ(digits_apart(2.0, 1.9996), 5);
+  EXPECT_EQ(digits_apart(0.5, 0.25), 3);  // apart already
+  EXPECT_EQ(digits_apart(1.0, 1.0), 3);   // equal: nothing to tell apart
+  EXPECT_EQ(digits_apart(1.0, std::nextafter(1.0, 2.0)), 17);
 }
 
 }  // namespace

@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 preset="${1:-release}"
-case "$preset" in release|debug|asan) ;; *) echo "usage: $0 [release|debug|asan]" >&2; exit 2 ;; esac
+case "$preset" in release|ci|debug|asan) ;; *) echo "usage: $0 [release|ci|debug|asan]" >&2; exit 2 ;; esac
 
 if [[ "$preset" == asan ]]; then scripts/deps.sh asan; else scripts/deps.sh build; fi
 # CI builds with warnings as errors; a user's build only shows them.

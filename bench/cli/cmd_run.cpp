@@ -106,11 +106,14 @@ int run_scene(const RunArgs& a) {
   std::unique_ptr<OutputFile> trace_meta_out;
   if (trace_is_file && dense)
     trace_meta_out = open_output(trace_metadata_path(a.trace), "--trace's metadata");
+  // Notes about the trace go to whichever of the command's streams the trace is not.
+  std::ostream& trace_note =
+      trace_out && trace_out->shared_stream() == &std::cerr ? std::cout : std::cerr;
   if (trace_out && dense && !trace_meta_out) {
-    std::cerr << "chainbench: note: --trace " << a.trace
-              << " is written directly (a device, a pipe or the command's own output): its "
-                 "metadata (dt, the engines' specs, the units) is not written; the rows' time "
-                 "column holds step * dt\n";
+    trace_note << "chainbench: note: --trace " << a.trace
+               << " is written directly (a device, a pipe or the command's own output): its "
+                  "metadata (dt, the engines' specs, the units) is not written; the rows' time "
+                  "column holds step * dt\n";
   }
   auto replay_out = open_output(a.replay, a.replay_option);
   std::optional<TraceWriter> trace;
@@ -181,9 +184,9 @@ int run_scene(const RunArgs& a) {
     // Written directly (a pipe): the rows of the run cut short are there; say where they start
     // (in the sparse form's comments; the dense form holds rows only).
     if (dense) {
-      std::cerr << "chainbench: note: --trace " << a.trace
-                << " was written directly: its last engine's rows are of a run that did not "
-                   "finish\n";
+      trace_note << "chainbench: note: --trace " << a.trace
+                 << " was written directly: its last engine's rows are of a run that did not "
+                    "finish\n";
     } else {
       trace_out->stream() << "# interrupted: the rows after the last finished engine's are of an "
                              "engine that did not finish\n";

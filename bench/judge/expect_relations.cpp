@@ -126,7 +126,7 @@ std::string describe_relation(const Scene& scene, const ExpectOutcome& o) {
   const std::string& body = scene.bodies[e.body].name;
   const std::string other = o.other ? scene.bodies[*o.other].name : std::string("?");
   const int d = digits_apart(o.value, e.tolerance);  // the measure not read as its tolerance
-  const std::string limit = concat({", tolerance ", fmt_g(e.tolerance, d), " m"});
+  const std::string limit = concat({", tolerance ", fmt_limit(e.tolerance, d), " m"});
   switch (e.kind) {
     case Kind::kAbove:
       return concat({body, ": bottom ", fmt_g(o.value, d), " m below the top of ", other, limit});

@@ -91,12 +91,13 @@ std::string describe(const Scene& scene, const ExpectOutcome& o) {
       what = concat({body, ": ", fmt_g(o.value, d), " m outside, at ", point(o.position)});
       break;
     case Expectation::Kind::kAtRest:
-      what = concat({body, ": moving at ", fmt_g(o.value, d), " m/s, limit ", fmt_g(e.speed, d)});
+      what =
+          concat({body, ": moving at ", fmt_g(o.value, d), " m/s, limit ", fmt_limit(e.speed, d)});
       break;
     case Expectation::Kind::kNoOverlap:
       what = o.body ? concat({scene.bodies[*o.body].name, " / ", scene.bodies[*o.other].name,
-                              ": overlap ", fmt_g(o.value, d), " m, limit ", fmt_g(e.depth, d)})
-                    : concat({"overlap ", fmt_g(o.value, d), " m, limit ", fmt_g(e.depth, d)});
+                              ": overlap ", fmt_g(o.value, d), " m, limit ", fmt_limit(e.depth, d)})
+                    : concat({"overlap ", fmt_g(o.value, d), " m, limit ", fmt_limit(e.depth, d)});
       break;
     case Expectation::Kind::kAbove:
     case Expectation::Kind::kBelow:
@@ -111,7 +112,7 @@ std::string describe(const Scene& scene, const ExpectOutcome& o) {
     margin = " (a near miss: within a tenth of 5% of the body's size)";
   } else if (!o.pass && e.kind != Expectation::Kind::kBounds && !o.beside) {
     const char* unit = is_speed(e.kind) ? " m/s" : " m";
-    margin = concat({", ", fmt_g(o.margin), unit, " beyond its ", fmt_g(o.limit, d), unit,
+    margin = concat({", ", fmt_g(o.margin), unit, " beyond its ", fmt_limit(o.limit, d), unit,
                      o.near ? " (a near miss: within a tenth of it)" : ""});
   }
   return concat({head, " ", what, margin, " ", at_state(o.state)});
@@ -188,10 +189,12 @@ std::optional<Verdict> judge(const Scene& scene, const Metrics& m,
     const PairOverlap& w = *m.worst_overlap;
     const double margin = w.depth - w.tolerance;
     const bool near = w.tolerance > 0.0 && margin <= 0.1 * w.tolerance;
+    const int d = digits_apart(w.depth, w.tolerance);  // the overlap not read as its tolerance
     add(VerdictClass::kPenetrating,
-        concat({name(w.a), " and ", name(w.b), " overlap ", fmt_g(w.depth), " m ", at_state(w.step),
-                " (", fmt_g(margin), " m beyond its tolerance ", fmt_g(w.tolerance), " m",
-                near ? ", a near miss: within a tenth of it" : "", ")"}),
+        concat({name(w.a), " and ", name(w.b), " overlap ", fmt_g(w.depth, d), " m ",
+                at_state(w.step), " (", fmt_g(margin), " m beyond its tolerance ",
+                fmt_limit(w.tolerance, d), " m", near ? ", a near miss: within a tenth of it" : "",
+                ")"}),
         {w.a, w.b}, w.step);
     v.findings.back().margin = margin;
     v.findings.back().tolerance = w.tolerance;

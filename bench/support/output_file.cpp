@@ -74,6 +74,19 @@ std::string why_not(const std::string& path, int error) {
   return error != 0 ? std::strerror(error) : "cannot be opened";
 }
 
+// Where a name that does not exist leads: a symbolic link to nowhere is followed, link by link
+// (at most 40, as the system does), to the file it would make; any other name is itself.
+std::string dangling_target(const std::string& path) {
+  std::error_code ec;
+  fs::path p = fs::absolute(path, ec);
+  for (int hops = 0; hops < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++hops) {
+    const fs::path next = fs::read_symlink(p, ec);
+    if (ec) break;
+    p = next.is_absolute() ? next : p.parent_path() / next;
+  }
+  return fs::weakly_canonical(p, ec).string();
+}
+
 }  // namespace
 
 OutputFile::OutputFile(const std::string& path, const char* option) : path_(path), target_(path) {
@@ -86,19 +99,32 @@ OutputFile::OutputFile(const std::string& path, const char* option) : path_(path
   if (exists && S_ISDIR(st.st_mode))
     throw InputError(std::string(option) + ": cannot write " + path + ": is a directory");
   errno = 0;
+  // Where the name leads: a symbolic link keeps pointing where it did, so the file it names is
+  // what is written, whether or not it exists yet.
+  std::error_code ec;
+  const std::string leads_to = exists ? fs::canonical(path, ec).string() : dangling_target(path);
+  auto under_system = [](const std::string& p) {
+    return p.rfind("/dev/", 0) == 0 || p.rfind("/proc/", 0) == 0;
+  };
   // /dev/stdout names whatever standard output is, a regular file too: replacing that file would
   // lose what the command prints there.
-  const bool special = path.rfind("/dev/", 0) == 0 || path.rfind("/proc/", 0) == 0;
-  // The command's own standard output or error (/dev/stdout, /proc/self/fd/2, or a file they
-  // are redirected to): written through that stream, in order with what the command prints
-  // there; a second descriptor on the same file would write over it.
+  const bool special = under_system(path) || (!ec && under_system(leads_to));
+  // A device or descriptor name that leads nowhere (/dev/stdout while standard output is
+  // closed) is no file to create.
+  if (!exists && special) {
+    throw InputError(std::string(option) + ": cannot write " + path +
+                     ": it names no open device or descriptor (is standard output closed?)");
+  }
+  // The command's own standard output or error, by whatever name (/dev/stdout, a link to it, the
+  // file it is redirected to): written through that stream, in order with what the command
+  // prints there; a second descriptor on the same file would write over it.
   auto same_file = [&](int fd) {
     struct stat of {};
     return fstat(fd, &of) == 0 && of.st_dev == st.st_dev && of.st_ino == st.st_ino;
   };
-  if (exists && special && same_file(STDOUT_FILENO)) {
+  if (exists && same_file(STDOUT_FILENO)) {
     shared_ = &std::cout;
-  } else if (exists && special && same_file(STDERR_FILENO)) {
+  } else if (exists && same_file(STDERR_FILENO)) {
     shared_ = &std::cerr;
   }
   if (shared_) {
@@ -106,12 +132,8 @@ OutputFile::OutputFile(const std::string& path, const char* option) : path_(path
   } else if (exists && (special || !S_ISREG(st.st_mode))) {
     out_.open(path, std::ios::binary | std::ios::trunc);  // a device or a pipe: no rename
   } else {
-    // A symbolic link keeps pointing where it did: the file it names is replaced.
-    std::error_code ec;
-    if (exists) {
-      const fs::path real = fs::canonical(path, ec);
-      if (!ec) target_ = real.string();
-    }
+    // A symbolic link keeps pointing where it did: the file it names is replaced (or made).
+    if (!ec && !leads_to.empty()) target_ = leads_to;
     const fs::path t(target_);
     // Appended piece by piece: GCC 12 warns (-Wrestrict) of "." + a string, wrongly.
     std::string hidden(1, '.');
@@ -121,7 +143,7 @@ OutputFile::OutputFile(const std::string& path, const char* option) : path_(path
     const int fd = mkstemp(name.data());
     if (fd < 0)
       throw InputError(std::string(option) + ": cannot write " + path + ": " +
-                       why_not(path, errno));
+                       why_not(target_, errno));
     // The file a command leaves gets the mode it had, or the one a new file gets.
     mode_t mode = st.st_mode & 07777;
     if (!exists) {

@@ -43,6 +43,9 @@ class OutputFile {
   // the output is written directly (a pipe, a device): what went there cannot be taken back.
   bool cut_back(long long at);
   const std::string& path() const { return path_; }
+  // std::cout or std::cerr when the target is the command's own standard output or error (what
+  // it writes goes through that stream), else null.
+  std::ostream* shared_stream() const { return shared_; }
   // Flushes and closes the temporary; OutputError naming the path if not everything was written.
   void finish();
   // Renames the finished temporary over the target; OutputError if the rename fails.

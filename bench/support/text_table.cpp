@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "support/text_table.h"
 
+#include "support/number_text.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -146,6 +148,10 @@ int digits_apart(double a, double b, int at_least) {
   while (digits < 17 && fmt_g(a, digits) == fmt_g(b, digits))
     ++digits;
   return digits;
+}
+
+std::string fmt_limit(double limit, int digits) {
+  return digits <= 3 ? fmt_g(limit) : exact_number(limit);
 }
 
 std::string fmt_ms(double ms) {

@@ -41,6 +41,10 @@ std::string fmt_g(double v, int digits = 3);
 // measure beside the limit it broke must not read as equal to it ("0.15855 m beyond its
 // 0.1585 m", not "0.159 ... 0.159"). at_least when they are equal.
 int digits_apart(double a, double b, int at_least = 3);
+// A limit beside the measure that broke it, the measure written to `digits` (digits_apart): to 3
+// digits where those already tell them apart, else exactly, as it was given (exact_number), so
+// that a limit of 1.99999999 never reads as 2.
+std::string fmt_limit(double limit, int digits);
 std::string fmt_ms(double ms);
 
 }  // namespace chainbench

@@ -697,7 +697,9 @@ def link_from(readme, results):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0].replace("\n", " "),
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("json", help="chainbench_bench --benchmark_out file")
     parser.add_argument("--readme", help="README whose results markers get the compact headline table")
     parser.add_argument("--results", help="file whose results markers get the full tables "

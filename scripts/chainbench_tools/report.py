@@ -243,8 +243,13 @@ def sweep_section(sweep, plots_dir):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: scripts/report.py RESULTS_DIR")
+    usage = "usage: scripts/report.py RESULTS_DIR (the folder scripts/run.sh writes: results)"
+    if len(sys.argv) == 2 and sys.argv[1] in ("-h", "--help"):
+        print(__doc__.strip() + "\n\n" + usage)
+        return
+    if len(sys.argv) != 2 or sys.argv[1].startswith("-"):
+        print(usage, file=sys.stderr)
+        sys.exit(2)
     root = sys.argv[1]
     plots = os.path.join(root, "plots")
     runs_dir = os.path.join(root, "runs")

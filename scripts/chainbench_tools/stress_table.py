@@ -69,7 +69,9 @@ def render(stress):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(
+        description=__doc__.split("\n\n")[0].replace("\n", " "),
+        formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("stress_json")
     parser.add_argument("--doc", "--readme", dest="doc",
                         help="rewrite this file's stress results in place (docs/stress.md)")

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -176,6 +177,24 @@ TEST(Cli, ATraceToStandardOutputRedirectedToAFileKeepsEveryRow) {
   }
   EXPECT_EQ(rows, 3 * 16);  // three steps of the stack's 16 bodies
   EXPECT_TRUE(table);
+}
+
+// An output that is the file standard output is redirected to (by its own name) is written
+// through standard output: the table and the JSON both arrive, neither over the other.
+TEST(Cli, AnOutputThatIsStandardOutputsFileKeepsTheTableToo) {
+  const std::string path = temp("same_as_stdout.txt");
+  const Result r = run_command(std::string(CHAINBENCH_EXE) +
+                               " run --scene stack --steps 2 --engines chain --reference none "
+                               "--json " +
+                               path + " > " + path + " 2>/dev/null");
+  ASSERT_EQ(r.status, 0);
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t json = text.find("{\n  \"schema\": \"chainbench.run/1\"");
+  ASSERT_NE(json, std::string::npos) << text;
+  EXPECT_NE(text.find("scene stack:"), std::string::npos) << text;
+  const nlohmann::json parsed = nlohmann::json::parse(text.substr(json), nullptr, false);
+  EXPECT_FALSE(parsed.is_discarded()) << text.substr(json);
 }
 
 // The dense trace (the default): a row per step and body, and its metadata in FILE.json.

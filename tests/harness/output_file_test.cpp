@@ -59,6 +59,41 @@ TEST(OutputFile, ACommittedOutputReplacesItsTargetKeepingModeAndLink) {
   EXPECT_EQ(files_in(dir), 3u);
 }
 
+// A link to a file not there yet stays a link: the file it names is made, link by link, and a
+// link into a folder that does not exist is refused naming that folder. A link to a descriptor
+// that is not open (/dev/stdout while standard output is closed) is never replaced by a file.
+TEST(OutputFile, ALinkToNothingIsFollowedNeverReplaced) {
+  const std::string dir = folder("dangling");
+  fs::create_directory(dir + "there");
+  fs::create_symlink(dir + "there/made.csv", dir + "second");
+  fs::create_symlink("second", dir + "first");  // relative, two hops
+  const auto out = open_output(dir + "first", "--csv");
+  out->stream() << "made";
+  commit_outputs({out.get()});
+  EXPECT_TRUE(fs::is_symlink(dir + "first"));
+  EXPECT_TRUE(fs::is_symlink(dir + "second"));
+  EXPECT_EQ(test::read_file(dir + "there/made.csv"), "made");
+  fs::create_symlink(dir + "nowhere/x.csv", dir + "lost");
+  try {
+    open_output(dir + "lost", "--csv");
+    ADD_FAILURE() << "a link into a missing folder was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("no such directory " + dir + "nowhere"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(fs::is_symlink(dir + "lost"));
+  // A descriptor no process has open: its name leads nowhere, and nothing is made there.
+  fs::create_symlink("/proc/self/fd/987654", dir + "closed");
+  try {
+    open_output(dir + "closed", "--trace");
+    ADD_FAILURE() << "a link to a closed descriptor was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("names no open device or descriptor"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(fs::is_symlink(dir + "closed"));
+}
+
 // What a command takes back (a trace's rows of an engine that did not finish) is gone from the
 // file, and what it writes next follows what it kept, however large the part dropped.
 TEST(OutputFile, CutBackDropsWhatWasWrittenAfterAMark) {

@@ -217,6 +217,16 @@ TEST(VerdictDetail, AMeasureNeverReadsAsTheLimitItBroke) {
   EXPECT_NE(all.find("box: 2 m from (-1, 0)"), std::string::npos) << all;
   EXPECT_NE(all.find("beyond its 1.9996 m"), std::string::npos) << all;
   EXPECT_NE(all.find("moving at 1 m/s, limit 0.9996"), std::string::npos) << all;
+  // Where the digits that tell them apart would round the limit itself, it is written as given.
+  s.expect[1].speed = 0.99999999;
+  const EngineRun close = run(s, "chain");
+  ASSERT_TRUE(close.verdict.has_value());
+  std::string details;
+  for (const Finding& f : close.verdict->findings)
+    details += f.detail + "\n";
+  EXPECT_NE(details.find("limit 0.99999999"), std::string::npos) << details;
+  EXPECT_EQ(fmt_limit(0.99999999, 8), "0.99999999");
+  EXPECT_EQ(fmt_limit(0.0803030303030303, 3), "0.0803");
   EXPECT_EQ(digits_apart(2.0, 1.9996), 5);
   EXPECT_EQ(digits_apart(0.5, 0.25), 3);  // apart already
   EXPECT_EQ(digits_apart(1.0, 1.0), 3);   // equal: nothing to tell apart

@@ -13,10 +13,11 @@ namespace {
 
 // Four significant digits below the metre, and every digit down to the millimetre above it, so
 // that a point far from the origin still shows where it is.
-std::string coordinate(double v) {
+// With `at_least`, no fewer digits than that (a centre beyond a bound it would read inside).
+std::string coordinate(double v, int at_least = 0) {
   const double magnitude = std::abs(v);
   const int digits = magnitude >= 1.0 ? 4 + static_cast<int>(std::log10(magnitude)) : 4;
-  return fmt_g(v, std::min(digits, 17));
+  return fmt_g(v, std::min(std::max(digits, at_least), 17));
 }
 
 std::string point(Vec2d p) {
@@ -87,9 +88,20 @@ std::string describe(const Scene& scene, const ExpectOutcome& o) {
                   point({start.x + e.moved.x, start.y + e.moved.y}), ", at ", point(o.position)});
       break;
     }
-    case Expectation::Kind::kBounds:
-      what = concat({body, ": ", fmt_g(o.value, d), " m outside, at ", point(o.position)});
+    case Expectation::Kind::kBounds: {
+      // The centre to the digits that put it beyond the bound it broke: rounded, 3.34145 past a
+      // bound of 3.3414 would read as 3.341, inside it.
+      auto apart = [](double v, const std::optional<double>& lo, const std::optional<double>& hi) {
+        if (lo && v < *lo) return digits_apart(v, *lo);
+        if (hi && v > *hi) return digits_apart(v, *hi);
+        return 0;
+      };
+      const Vec2d p = o.position;
+      what = concat({body, ": ", fmt_g(o.value, d), " m outside, at (",
+                     coordinate(p.x, apart(p.x, e.min_x, e.max_x)), ", ",
+                     coordinate(p.y, apart(p.y, e.min_y, e.max_y)), ")"});
       break;
+    }
     case Expectation::Kind::kAtRest:
       what =
           concat({body, ": moving at ", fmt_g(o.value, d), " m/s, limit ", fmt_limit(e.speed, d)});

@@ -2,6 +2,7 @@
 #include "support/output_file.h"
 
 #include "support/input_error.h"
+#include "support/text_table.h"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -266,8 +267,13 @@ void refuse_clashing_files(const std::vector<NamedFile>& outputs,
     }
     for (const auto& [prev, other] : outputs_seen) {
       if (id == other) {
-        throw InputError(std::string(prev.first) + " and " + option + " both name " + *path +
-                         ": give each output its own file");
+        // Two spellings of one file (a link, ./, a hard link) are each named, as given.
+        const std::string& earlier = *prev.second;
+        throw InputError(earlier == *path
+                             ? concat({prev.first, " and ", option, " both name ", *path,
+                                       ": give each output its own file"})
+                             : concat({prev.first, " ", earlier, " and ", option, " ", *path,
+                                       " name the same file: give each output its own file"}));
       }
     }
     outputs_seen.emplace_back(out, id);

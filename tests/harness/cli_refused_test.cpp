@@ -99,7 +99,7 @@ constexpr BadCall kBadCalls[] = {
     {"run --scene stack --json /tmp/cb_same --csv /tmp/cb_same",
      "--json and --csv both name /tmp/cb_same: give each output its own file"},
     {"run --scene stack --trace /tmp/cb_same --replay /tmp/../tmp/cb_same",
-     "--trace and --replay both name"},
+     "--trace /tmp/cb_same and --replay /tmp/../tmp/cb_same name the same file"},
     {"sweep --scene stack --json /tmp/cb_same --csv /tmp/cb_same", "both name"},
     {"run --scene stack --json ''", "--json: the output file path is empty"},
     {"run --scene stack --replay ''", "--replay: the output file path is empty"},

@@ -226,7 +226,22 @@ TEST(VerdictDetail, AMeasureNeverReadsAsTheLimitItBroke) {
     details += f.detail + "\n";
   EXPECT_NE(details.find("limit 0.99999999"), std::string::npos) << details;
   EXPECT_EQ(fmt_limit(0.99999999, 8), "0.99999999");
-  EXPECT_EQ(fmt_limit(0.0803030303030303, 3), "0.0803");
+  // A centre just past a bound is shown past it: the box ends at x = 3.34145 against max x 3.3414
+  // (4 digits would put it at 3.341, inside); far past, it keeps its 4 digits.
+  Scene bounded = drifting_box();
+  bounded.bodies[0].velocity = {3.34145, 0.0};
+  bounded.expect = {Expectation{}};
+  bounded.expect[0].kind = Expectation::Kind::kBounds;
+  bounded.expect[0].max_x = 3.3414;
+  const EngineRun past = run(bounded, "chain");
+  ASSERT_TRUE(past.verdict.has_value());
+  EXPECT_NE(past.verdict->findings[0].detail.find("outside, at (3.34145, 0)"), std::string::npos)
+      << past.verdict->findings[0].detail;
+  bounded.expect[0].max_x = 2.0;
+  const EngineRun far = run(bounded, "chain");
+  ASSERT_TRUE(far.verdict.has_value());
+  EXPECT_NE(far.verdict->findings[0].detail.find("outside, at (3.341, 0)"), std::string::npos)
+      << far.verdict->findings[0].detail;
   EXPECT_EQ(digits_apart(2.0, 1.9996), 5);
   EXPECT_EQ(digits_apart(0.5, 0.25), 3);  // apart already
   EXPECT_EQ(digits_apart(1.0, 1.0), 3);   // equal: nothing to tell apart

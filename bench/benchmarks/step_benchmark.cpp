@@ -263,9 +263,13 @@ Scene family_sample(const Family& family) {
   return make_scene(family.scene, family_sets(family, family.sizes.front()));
 }
 
-void register_harness(const EngineSpec& spec, std::size_t max_bodies) {
-  for (const Family& family : benchmark_families()) {
-    if (!missing_capability(spec, family_sample(family)).empty()) continue;
+// `samples`: family_sample() of each of benchmark_families(), in order.
+void register_harness(const EngineSpec& spec, std::size_t max_bodies,
+                      const std::vector<Scene>& samples) {
+  const std::vector<Family>& families = benchmark_families();
+  for (std::size_t k = 0; k < families.size(); ++k) {
+    const Family& family = families[k];
+    if (!missing_capability(spec, samples[k]).empty()) continue;
     for (const int size : family.sizes) {
       if (family_bodies(family, size) > max_bodies) continue;
       const std::string name = "harness/" + family.name + "/" + std::to_string(size);
@@ -362,8 +366,12 @@ void register_all(const std::string& engine_list) {
     }
   }
   benchmark::AddCustomContext("chainbench_sleeping", sleeping);
-  for (const Family& family : benchmark_families()) {
-    const Scene sample = family_sample(family);
+  std::vector<Scene> samples;
+  for (const Family& family : benchmark_families())
+    samples.push_back(family_sample(family));
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const Family& family = benchmark_families()[k];
+    const Scene& sample = samples[k];
     for (const auto& [spec, max_bodies] : engines) {
       if (!missing_capability(spec, sample).empty()) continue;  // e.g. friction it does not have
       const std::size_t most =
@@ -392,7 +400,7 @@ void register_all(const std::string& engine_list) {
 #endif
   // The harness' cost, at every size the engine under test runs at.
   for (const auto& [spec, max_bodies] : engines) {
-    if (spec.label() == subject.label()) register_harness(spec, max_bodies);
+    if (spec.label() == subject.label()) register_harness(spec, max_bodies, samples);
   }
 }
 

@@ -177,9 +177,21 @@ std::string StressVerdict::verdict_detail() const {
   return detail;
 }
 
+std::optional<double> StressVerdict::metric_named(std::string_view name) const {
+  const std::span<const MetricDef> table = metric_table();
+  for (std::size_t k = 0; k < table.size(); ++k) {
+    if (name == table[k].name) return metric(k);
+  }
+  return std::nullopt;
+}
+
 bool StressVerdict::stable() const {
-  return finished && error.empty() && finite && in_bounds && !blow_up && !tunnelled &&
-         degraded_steps == 0;
+  // A flag not measured (a verdict made by hand) stands as the right value.
+  auto is = [&](const char* flag, bool right) {
+    return metric_named(flag).value_or(right ? 1.0 : 0.0) != 0.0;
+  };
+  return finished && error.empty() && is("finite", true) && is("in_bounds", true) &&
+         !is("blow_up", false) && !is("tunnelled", false) && degraded_steps == 0;
 }
 
 bool StressVerdict::fatal() const {
@@ -221,14 +233,6 @@ StressVerdict run_stress_case(const StressCase& c, const EngineSpec& engine, dou
     v.metrics.push_back(s.measured[k] || !v.error.empty() ? std::optional<double>(s.metrics[k])
                                                           : std::nullopt);
   }
-  // The figures the verdict's logic reads by name.
-  auto metric = [&](const char* name) {
-    const MetricDef* def = find_metric(name);
-    return def ? v.metric(static_cast<std::size_t>(def - table.data())).value_or(0.0) : 0.0;
-  };
-  v.max_penetration = metric("max_penetration");
-  v.finite = metric("finite") != 0.0, v.in_bounds = metric("in_bounds") != 0.0;
-  v.blow_up = metric("blow_up") != 0.0, v.tunnelled = metric("tunnelled") != 0.0;
   v.ms_per_step = s.ms_per_step;
   v.known_failure = known_failure(engine, v.case_label, to_string(v.verdict()));
   v.expect_pass = s.expect_pass;

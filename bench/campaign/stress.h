@@ -14,6 +14,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace chainbench {
@@ -44,7 +45,7 @@ struct StressVerdict {
   VerdictClass judged = VerdictClass::kOk;  // the child's verdict on a finished run
   std::string detail;                       // what it rests on
   bool near_miss = false;  // every failed check of the child's verdict was a near miss (verdict.h)
-  bool finite = true, in_bounds = true, blow_up = false, tunnelled = false, expect_pass = true;
+  bool expect_pass = true;
   std::uint64_t degraded_steps = 0;
   struct Counter {
     std::string name, column;
@@ -52,12 +53,13 @@ struct StressVerdict {
   };
   std::vector<Counter> counters;  // the engine's counters over the run (engine.h)
   // The run's metrics, one per row of metric_table() in its order (empty: not measured, or
-  // not finished; metric(k) reads them).
+  // not finished); metric(k) and metric_named() read them.
   std::vector<std::optional<double>> metrics;
   std::optional<double> metric(std::size_t k) const {
     return k < metrics.size() ? metrics[k] : std::nullopt;
   }
-  double max_penetration = 0.0;  // the metric of that name (0 when not finished)
+  // The metric of that name (MetricDef::name), or empty when not measured or not in the table.
+  std::optional<double> metric_named(std::string_view name) const;
   double ms_per_step = 0.0, wall_s = 0.0;
   std::string known_failure;  // the reason, when this case and engine are a known failure
   std::string skipped;        // why the engine could not run the case (it was not run)

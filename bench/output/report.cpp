@@ -25,16 +25,11 @@ std::string yes_no(const std::optional<bool>& v) {
 // order the runs first show them.
 std::vector<std::pair<std::string, std::string>> counter_columns(const RunReport& r) {
   std::vector<std::pair<std::string, std::string>> columns;  // (title, counter name)
-  auto note = [&](const EngineRun& run) {
-    for (const CounterDef& c : run.counter_defs()) {
-      const bool known = std::any_of(columns.begin(), columns.end(),
-                                     [&](const auto& col) { return col.first == c.column; });
-      if (!c.column.empty() && !known) columns.emplace_back(c.column, c.name);
-    }
-  };
-  for (const EngineRun& run : r.runs)
-    note(run);
-  if (r.reference) note(*r.reference);
+  for_each_counter_def(r, [&](const CounterDef& c) {
+    const bool known = std::any_of(columns.begin(), columns.end(),
+                                   [&](const auto& col) { return col.first == c.column; });
+    if (!c.column.empty() && !known) columns.emplace_back(c.column, c.name);
+  });
   return columns;
 }
 

@@ -45,6 +45,20 @@ struct LimitNote {
 };
 std::vector<LimitNote> exceeded_limits(const RunReport& report);
 
+// Calls visit(def) for every counter every run of `report` declares: its runs in order, then the
+// reference run; a counter two engines declare comes twice.
+template <class Visit>
+void for_each_counter_def(const RunReport& report, Visit&& visit) {
+  for (const EngineRun& run : report.runs) {
+    for (const CounterDef& c : run.counter_defs())
+      visit(c);
+  }
+  if (report.reference) {
+    for (const CounterDef& c : report.reference->counter_defs())
+      visit(c);
+  }
+}
+
 // Fills report.comparison from report.runs and the reference.
 void compare(RunReport& report);
 // The reference's run (one of report.runs, or report.reference), or null without one.

@@ -12,14 +12,9 @@ namespace {
 // Every counter name some run's engine declares, once, in the order the runs first declare them.
 std::vector<std::string> counter_column_names(const RunReport& r) {
   std::vector<std::string> names;
-  auto note = [&](const EngineRun& run) {
-    for (const CounterDef& c : run.counter_defs()) {
-      if (std::find(names.begin(), names.end(), c.name) == names.end()) names.push_back(c.name);
-    }
-  };
-  for (const EngineRun& run : r.runs)
-    note(run);
-  if (r.reference) note(*r.reference);
+  for_each_counter_def(r, [&](const CounterDef& c) {
+    if (std::find(names.begin(), names.end(), c.name) == names.end()) names.push_back(c.name);
+  });
   return names;
 }
 

@@ -103,7 +103,7 @@ StressCase projectile_at(const char* speed) {
 TEST(StressVerdicts, SlowProjectileStopsInTheStack) {
   const StressVerdict v = run_stress_case(projectile_at("10"), parse_engine_spec("chain"), 60.0);
   ASSERT_TRUE(v.finished);
-  EXPECT_FALSE(v.tunnelled);
+  EXPECT_EQ(v.metric_named("tunnelled"), 0.0);
   EXPECT_TRUE(v.expect_pass);
   EXPECT_EQ(v.verdict(), VerdictClass::kOk) << v.verdict_detail();
   EXPECT_FALSE(v.fatal());
@@ -118,7 +118,7 @@ TEST(StressVerdicts, FastProjectileStopsInChainButNotInBox2d) {
   const StressVerdict chain =
       run_stress_case(projectile_at("500"), parse_engine_spec("chain"), 60.0);
   ASSERT_TRUE(chain.finished);
-  EXPECT_FALSE(chain.tunnelled);
+  EXPECT_EQ(chain.metric_named("tunnelled"), 0.0);
   EXPECT_EQ(chain.verdict(), VerdictClass::kOk) << chain.verdict_detail();
   const StressVerdict box2d =
       run_stress_case(projectile_at("500"), parse_engine_spec("box2d"), 60.0);
@@ -136,7 +136,7 @@ TEST(StressVerdicts, Box2dHeavyTopStackIsWrong) {
   const StressVerdict v = run_stress_case(c, parse_engine_spec("box2d:ccd=0"), 60.0);
   ASSERT_TRUE(v.finished);
   EXPECT_EQ(v.verdict(), VerdictClass::kWrong) << v.verdict_detail();
-  EXPECT_GT(v.max_penetration, 0.8);
+  EXPECT_GT(v.metric_named("max_penetration").value_or(0.0), 0.8);
   const StressVerdict shipped = run_stress_case(c, parse_engine_spec("box2d"), 60.0);
   EXPECT_EQ(shipped.verdict(), VerdictClass::kTunnelled) << shipped.verdict_detail();
   EXPECT_TRUE(run_stress_case(c, parse_engine_spec("chain"), 60.0).verdict() == VerdictClass::kOk);

@@ -202,6 +202,14 @@ TEST(VerdictDetail, NearMissesAreToldFromClearOnes) {
 namespace chainbench {
 namespace {
 
+// Every finding's detail of a judged run, a line each.
+std::string details_of(const EngineRun& r) {
+  std::string all;
+  for (const Finding& f : r.verdict->findings)
+    all += f.detail + "\n";
+  return all;
+}
+
 // A measure beside the limit it broke is written with the digits that keep them apart: the box
 // ends 2 m from its expected centre, against a tolerance of 1.9996 m (3 digits would write both
 // as 2); its speed of 1 m/s against a rest limit of 0.9996 m/s likewise.
@@ -211,9 +219,7 @@ TEST(VerdictDetail, AMeasureNeverReadsAsTheLimitItBroke) {
   s.expect[1].speed = 0.9996;
   const EngineRun r = run(s, "chain");
   ASSERT_TRUE(r.verdict.has_value());
-  std::string all;
-  for (const Finding& f : r.verdict->findings)
-    all += f.detail + "\n";
+  const std::string all = details_of(r);
   EXPECT_NE(all.find("box: 2 m from (-1, 0)"), std::string::npos) << all;
   EXPECT_NE(all.find("beyond its 1.9996 m"), std::string::npos) << all;
   EXPECT_NE(all.find("moving at 1 m/s, limit 0.9996"), std::string::npos) << all;
@@ -221,9 +227,7 @@ TEST(VerdictDetail, AMeasureNeverReadsAsTheLimitItBroke) {
   s.expect[1].speed = 0.99999999;
   const EngineRun close = run(s, "chain");
   ASSERT_TRUE(close.verdict.has_value());
-  std::string details;
-  for (const Finding& f : close.verdict->findings)
-    details += f.detail + "\n";
+  const std::string details = details_of(close);
   EXPECT_NE(details.find("limit 0.99999999"), std::string::npos) << details;
   EXPECT_EQ(fmt_limit(0.99999999, 8), "0.99999999");
   // A centre just past a bound is shown past it: the box ends at x = 3.34145 against max x 3.3414

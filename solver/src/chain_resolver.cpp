@@ -22,6 +22,7 @@ void ChainResolver::resolve(StepContext& ctx) {
   }
   state_.begin_step(ctx);
   walls_.begin_step(bodies.size());
+  test_ = OverlapTest(tol);
   ctx.clock.lap(ctx.profile.prepare);
   fresh_grid_ = continuous_.run(ctx, state_);
   ctx.clock.lap(ctx.profile.continuous);
@@ -85,6 +86,29 @@ void ChainResolver::forget_slots() {
   near_generation_ = kNotScanned;
 }
 
+bool ChainResolver::next_candidate(StepContext& ctx, Frame& f, std::uint32_t from,
+                                   std::uint32_t& c) {
+  const Bodies& bodies = ctx.bodies;
+  const double tol = ctx.def.touch_tolerance;
+  while (f.cursor < f.cand_end) {
+    c = cands_[f.cursor++];
+    if (c == f.a || c == f.b) continue;
+    // The overlap first: most candidates fail it, and it reads no per-body marks.
+    const Overlap o = overlap(bodies, from, c);
+    if (o.x <= tol || o.y <= tol) continue;
+    const bool immovable = bodies.immovable(c);
+    if (!immovable && state_.crushed(c)) continue;
+    if (!immovable && state_.visited(c)) {
+      // Bodies still on the stack follow back when their frame closes; any other body already
+      // in this chain keeps its overlap for the next pass.
+      if (state_.on_stack(c) == 0) state_.flag(from, c);
+      continue;
+    }
+    return true;
+  }
+  return false;
+}
+
 void ChainResolver::run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b) {
   state_.begin_chain();
   cands_.clear();
@@ -133,11 +157,7 @@ void ChainResolver::run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b
 
 bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, double extra, int axis,
                          bool force_static, std::uint32_t anchor, std::uint32_t follower) {
-  Frame& f = last_;
-  f = Frame{};
-  f.a = a;
-  f.b = b;
-  f.anchor = anchor;
+  last_ = Result{0.0, anchor, 0};
   if (!state_.spend(ctx)) return false;
   Bodies& bodies = ctx.bodies;
   state_.visit(a);
@@ -161,11 +181,9 @@ bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, dou
     state_.flag(a, b);  // an overlap across the chaining axis: the next pass takes it
     return false;
   }
-  f.chain_axis = static_cast<std::int8_t>(push_axis);
-  f.sign = static_cast<std::int8_t>(sign);
   if (!force_static && state_.supported_towards(push_axis, b, -sign)) {
     force_static = true;  // b would be pushed into its own support: it is a wall here
-    f.anchor = anchor = state_.support_anchor(b);
+    last_.anchor = anchor = state_.support_anchor(b);
   }
   ctx.note_push(a, b, push_axis, sign);
 
@@ -176,9 +194,9 @@ bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, dou
     // positions every step instead of accumulating rounding.
     // A body of a row squeezed last step keeps the overlap it had (ForceStatic::kept_squeeze).
     const double target = p(b) + sign * (h(a) + h(b) - walls_.kept_squeeze(ctx, a, b, push_axis));
-    f.moved = ctx.place(a, push_axis, target, follower);
+    last_.moved = ctx.place(a, push_axis, target, follower);
     if (p(a) != target) state_.flag(a, b);  // stopped short by a body in its way
-    f.backing = static_cast<std::int8_t>(-sign);
+    last_.backing = static_cast<std::int8_t>(-sign);
     state_.support(push_axis, a, -sign, anchor);
     walls_.add({a, b, push_axis, -sign, anchor, depth});  // the caller runs the walls
     return false;
@@ -187,61 +205,49 @@ bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, dou
   const double mass_a = bodies.mass[a] + extra;
   const double mass_b = bodies.mass[b];
   const double share = depth_along * (mass_b / (mass_a + mass_b));
-  f.moved = ctx.move(a, push_axis, share, follower);
+  const double moved = ctx.move(a, push_axis, share, follower);
   // Either may stop short at a body in its way (StepContext::move): the rest of the overlap is
   // left to the chain that body starts, or to the next pass.
-  if (ctx.move(b, push_axis, share - depth_along) != share - depth_along || f.moved != share)
+  if (ctx.move(b, push_axis, share - depth_along) != share - depth_along || moved != share)
     state_.flag(a, b);
-  f.extra = extra;
-  f.axis = static_cast<std::int8_t>(axis);
-  f.stage = Stage::kBack;
-  f.cand_begin = f.cand_end = f.cursor = static_cast<std::uint32_t>(cands_.size());
   ++state_.on_stack(a);
   ++state_.on_stack(b);
-  stack_.push_back(f);
-  gather_candidates(ctx, stack_.back(), a);
+  // Written in place, field by field: a frame built elsewhere and copied in was read back with
+  // wide loads straight after its narrow stores, which stalled every open (store forwarding).
+  Frame& f = stack_.emplace_back();
+  f.a = a;
+  f.b = b;
+  f.anchor = anchor;
+  f.cand_begin = f.cand_end = f.cursor = static_cast<std::uint32_t>(cands_.size());
+  f.extra = extra;
+  f.moved = moved;
+  f.axis = static_cast<std::int8_t>(axis);
+  f.chain_axis = static_cast<std::int8_t>(push_axis);
+  f.sign = static_cast<std::int8_t>(sign);
+  f.backing = 0;
+  f.stage = Stage::kBack;
+  f.frozen = false;
+  gather_candidates(ctx, f, a);
   return true;
 }
 
 void ChainResolver::gather_candidates(StepContext& ctx, Frame& f, std::uint32_t around) {
-  cands_.resize(f.cand_begin);
-  state_.gather_overlaps(ctx, around, cands_);
+  cands_.truncate(f.cand_begin);
+  state_.gather_overlaps(ctx, around, cands_, test_);
   f.cand_end = static_cast<std::uint32_t>(cands_.size());
   f.cursor = f.cand_begin;
-}
-
-bool ChainResolver::next_candidate(StepContext& ctx, Frame& f, std::uint32_t from,
-                                   std::uint32_t& c) {
-  const Bodies& bodies = ctx.bodies;
-  const double tol = ctx.def.touch_tolerance;
-  while (f.cursor < f.cand_end) {
-    c = cands_[f.cursor++];
-    if (c == f.a || c == f.b) continue;
-    const bool immovable = bodies.immovable(c);
-    if (!immovable && state_.crushed(c)) continue;
-    const Overlap o = overlap(bodies, from, c);
-    if (o.x <= tol || o.y <= tol) continue;
-    if (!immovable && state_.visited(c)) {
-      // Bodies still on the stack follow back when their frame closes; any other body already
-      // in this chain keeps its overlap for the next pass.
-      if (state_.on_stack(c) == 0) state_.flag(from, c);
-      continue;
-    }
-    return true;
-  }
-  return false;
 }
 
 void ChainResolver::close(StepContext& ctx) {
   const Frame done = stack_.back();
   stack_.pop_back();
-  cands_.resize(done.cand_begin);
+  cands_.truncate(done.cand_begin);
   --state_.on_stack(done.a);
   --state_.on_stack(done.b);
-  if (!stack_.empty()) hand_back(ctx, done);
+  if (!stack_.empty()) hand_back(ctx, {done.moved, done.anchor, done.backing});
 }
 
-void ChainResolver::hand_back(StepContext& ctx, const Frame& done) {
+void ChainResolver::hand_back(StepContext& ctx, const Result& done) {
   Frame& p = stack_.back();
   if (p.stage == Stage::kBack) {  // done.a == p.a: b follows a
     if (done.moved != 0.0) {

@@ -22,6 +22,8 @@ class SlotList {
   }
   void push(std::uint32_t slot) { slots_[size_++] = slot; }  // after room_for
   void clear() { size_ = 0; }
+  // Keeps the first `size` slots (at most size()): a list used as a stack of lists.
+  void truncate(std::size_t size) { size_ = size; }
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
   std::uint32_t operator[](std::size_t k) const { return slots_[k]; }

@@ -83,7 +83,6 @@ class ChainResolver {
   [[gnu::always_inline]] inline bool next_candidate(StepContext& ctx, Frame& f, std::uint32_t from,
                                                     std::uint32_t& c);
   void close(StepContext& ctx);
-  // Hands the result of a frame that just finished to the frame below it on the stack.
   // What a finished frame hands the one below it: how far its a moved along the chaining axis
   // (follow-backs included), and the immovable body backing it, from which side (0: none).
   struct Result {
@@ -91,6 +90,7 @@ class ChainResolver {
     std::uint32_t anchor;
     std::int8_t backing;
   };
+  // Hands the result of a frame that just finished to the frame below it on the stack.
   void hand_back(StepContext& ctx, const Result& done);
 
   ChainState state_;

@@ -33,11 +33,13 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
   const Broadphase& bp = ctx.broadphase;
-  if (!fresh_grid_ && near_generation_ == bp.generation() &&
+  if (!fresh_grid_ && !rescan_every_step_ && near_generation_ == bp.generation() &&
       bp.stale_count() <= bodies.size() / kRescanShare &&
       (bp.stale_count() == 0 || bp.examined() - examined_after_scan_ <= scan_cost_)) {
     state_.begin_pass(bodies, nullptr);
+    if (bp.stale_count() > 0) ++reuses_with_refiled_;
   } else {
+    ++scans_;
     const std::uint64_t before = bp.examined();
     if (!fresh_grid_) ctx.broadphase.build(bodies, ctx.dt, ctx.def.gravity);
     fresh_grid_ = false;
@@ -94,19 +96,42 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     }
     return;
   }
+  // The contacts come out ordered by their later body, then their earlier one, as a scan with no
+  // body filed again since would give them: those of the bodies filed again are found apart and
+  // merged in, so which bodies were filed again, and when, changes no result.
+  // near_pairs_ holds them (it is not read again until the next scan refills it, and has room for
+  // as many pairs as the scan found).
+  std::vector<Pair>& refiled_pairs = near_pairs_;
+  refiled_pairs.clear();
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
     if (bp.stale(i)) {
       bp.for_each_overlap(bodies, i, tol, [&](std::uint32_t j) {
         if ((j < i || !bp.stale(j)) && !(bodies.immovable(i) && bodies.immovable(j)))
-          push_buffer(contacts_, {std::min(i, j), std::max(i, j)});
+          push_buffer(refiled_pairs, {std::min(i, j), std::max(i, j)});
       });
       continue;
     }
-    // Its lower near bodies (those of its near list, in that order) that it overlaps, less the
+    // Its lower near bodies (those of its near list, in slot order) that it overlaps, less the
     // bodies filed again since the scan, which take the pair at their own turn.
     for_each_hit(box, i, state_.lower(i), test, [&](std::uint32_t j) {
       if (!bp.stale(j)) push_buffer(contacts_, {j, i});
     });
+  }
+  if (refiled_pairs.empty()) return;
+  auto later_first = [](const Pair& p, const Pair& q) {
+    return p.b != q.b ? p.b < q.b : p.a < q.a;
+  };
+  std::sort(refiled_pairs.begin(), refiled_pairs.end(), later_first);
+  // Merged in place from the back: the refiled bodies' pairs are few, and a second list of every
+  // contact would hold as many bytes again.
+  std::size_t from = contacts_.size(), refiled = refiled_pairs.size();
+  resize_buffer(contacts_, from + refiled);
+  for (std::size_t to = from + refiled; refiled > 0;) {
+    if (from > 0 && later_first(refiled_pairs[refiled - 1], contacts_[from - 1])) {
+      contacts_[--to] = contacts_[--from];
+    } else {
+      contacts_[--to] = refiled_pairs[--refiled];
+    }
   }
 }
 

@@ -44,6 +44,13 @@ class ChainResolver {
   std::size_t reach_jumps() const { return state_.reach_jumps(); }
   // The slots were renumbered: forgets every per-body mark and the near pairs.
   void forget_slots();
+  // Scans the near pairs anew, grid rebuilt, at the start of every step's first pass, as a fresh
+  // broadphase would: for tests that no result depends on when they were scanned.
+  void rescan_every_step(bool on) { rescan_every_step_ = on; }
+  // Steps that scanned the near pairs, and steps that took them from an earlier scan while some
+  // body was filed again since (those whose contacts and overlaps merge the refiled ones in).
+  std::uint64_t scans() const { return scans_; }
+  std::uint64_t reuses_with_refiled() const { return reuses_with_refiled_; }
   // The next step reads a squeeze this one or the last remembered (ForceStatic::kept_squeeze):
   // besides the bodies, the only state a step hands the next.
   bool remembers_squeezes() const { return walls_.remembers_squeezes(); }
@@ -98,6 +105,8 @@ class ChainResolver {
   ContinuousCollision continuous_;
   // Continuous collision built the broadphase this step, and its near pairs are not scanned yet.
   bool fresh_grid_ = false;
+  bool rescan_every_step_ = false;
+  std::uint64_t scans_ = 0, reuses_with_refiled_ = 0;
   bool repeat_immovable_ = false;  // some body has several immovable contacts in this pass
   struct Entry {
     Pair pair;

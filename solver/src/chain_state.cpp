@@ -63,6 +63,21 @@ void ChainState::begin_pass(const Bodies& bodies, const std::vector<Pair>* near_
     near_[near_start_[p.a + 1]++] = p.b * kEntryScale;
     near_[near_start_[p.b + 1]++] = p.a * kEntryScale;
   }
+  // Each list in slot order: the order a chain meets a body's overlaps in is then theirs alone,
+  // not that of the scan's cells, so when the near pairs were scanned, and which bodies beyond
+  // the overlapping ones they hold, changes no result. Lists are short (a row's body has two
+  // or three, a pile's six or so): insertion sort.
+  for (std::uint32_t i = 0; i < n; ++i) {
+    std::uint32_t* const first = near_.data() + near_start_[i];
+    std::uint32_t* const last = near_.data() + near_start_[i + 1];
+    for (std::uint32_t* p = first + 1; p < last; ++p) {
+      const std::uint32_t e = *p;
+      std::uint32_t* q = p;
+      for (; q > first && q[-1] > e; --q)
+        *q = q[-1];
+      *q = e;
+    }
+  }
   // Each body's lower neighbours, in the order of its near list.
   resize_buffer(lower_start_, n + 1);
   resize_buffer(lower_, near_.size() / 2);
@@ -118,6 +133,7 @@ void ChainState::begin_chain() {
   const Bodies& b = ctx.bodies;
   if (bp.stale(around)) {  // filed again since the near pairs were taken: they do not hold for it
     bp.for_each_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
+    std::sort(out.begin() + static_cast<std::ptrdiff_t>(from), out.end());  // as near lists are
     return std::any_of(out.begin() + from, out.end(),
                        [&](std::uint32_t j) { return b.immovable(j); });
   }
@@ -129,6 +145,9 @@ void ChainState::begin_chain() {
     if (!bp.stale(j)) out.push_back(j);
   });
   bp.for_each_stale_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
+  // In slot order, as the near list alone would give them: the list's hits are, the overlay's
+  // come after them in the overlay's order.
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(from), out.end());
   return std::any_of(out.begin() + from, out.end(),
                      [&](std::uint32_t j) { return b.immovable(j); });
 }

@@ -59,6 +59,10 @@
 
 namespace chain {
 
+namespace detail {
+struct WorldAccess;  // the library's and its tests' way in (solver/src/world_access.h)
+}  // namespace detail
+
 // Inputs beyond these limits are rejected: far outside them double arithmetic stops being
 // meaningful, and near double's own limit it overflows.
 inline constexpr double kMaxCoordinate = 1.0e9;  // |center| components, metres
@@ -218,6 +222,7 @@ class World {
   const WorldDef& def() const noexcept;
 
  private:
+  friend struct detail::WorldAccess;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -308,8 +308,10 @@ void Broadphase::Level::build(const Bodies& b, std::span<const Point> at,
     const std::uint32_t i = bodies[k];
     entry_of[i] = cursor[keys[k]]++;
     const std::uint8_t immovable = b.immovable(i) ? 1 : 0;
-    entries[entry_of[i]] = Entry{i,       cell_x(at[i].x), cell_y(at[i].y),   immovable,        0,
-                                 at[i].x, at[i].y,         b.hx(i) + by[i].x, b.hy(i) + by[i].y};
+    const std::uint8_t stretched = by[i].x != 0.0f || by[i].y != 0.0f ? 1 : 0;
+    entries[entry_of[i]] =
+        Entry{i,         cell_x(at[i].x), cell_y(at[i].y), immovable,         0,
+              stretched, at[i].x,         at[i].y,         b.hx(i) + by[i].x, b.hy(i) + by[i].y};
   }
 }
 

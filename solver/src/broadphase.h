@@ -176,7 +176,8 @@ class Broadphase {
     std::uint32_t body;
     std::int32_t cx, cy;
     std::uint8_t immovable;
-    std::uint8_t out;  // the body is filed in the overlay now: this entry no longer counts
+    std::uint8_t out;        // the body is filed in the overlay now: this entry no longer counts
+    std::uint8_t stretched;  // its box is stretched along its way (hx, hy include the stretch)
     double x, y, hx, hy;
   };
   struct CellRange {

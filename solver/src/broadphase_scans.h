@@ -124,14 +124,26 @@ void Broadphase::for_each_near_pair(const Bodies& bodies, Fn&& fn) {
     // Within the level, half the neighbourhood: the own row (each pair once, by slot) and the
     // rows above; the rows below find e when it is their turn. Boxes no larger than the level's
     // largest that are slack apart have centres at most a cell apart, so in the next cells;
-    // stretched by at most that largest half extent, at most 2 cells apart.
-    const std::int32_t k = level.stretch > 0.0 ? 2 : 1;
+    // with one of them stretched (by at most that largest half extent), at most 2 cells apart.
+    // A pair with a stretched body is the stretched body's to find: an unstretched entry scans
+    // the next cells for unstretched bodies only, a stretched one two cells all round for the
+    // unstretched and half of that for the stretched. Near lists are sorted (ChainState), so
+    // which side finds a pair changes nothing: the pairs are the same set.
     for (const Entry& e : level.entries) {
       if (e.out) continue;
-      const CellRange r{std::max(e.cx - k, 0), e.cy, std::min(e.cx + k, last_x),
-                        std::min(e.cy + k, last_y)};
+      if (!e.stretched) {
+        const CellRange r{std::max(e.cx - 1, 0), e.cy, std::min(e.cx + 1, last_x),
+                          std::min(e.cy + 1, last_y)};
+        level.scan(r, examined_, [&](const Entry& f) {
+          if ((f.cy != e.cy || f.body > e.body) && !f.stretched) test(e, f);
+        });
+        continue;
+      }
+      const CellRange r{std::max(e.cx - 2, 0), std::max(e.cy - 2, 0), std::min(e.cx + 2, last_x),
+                        std::min(e.cy + 2, last_y)};
       level.scan(r, examined_, [&](const Entry& f) {
-        if (f.cy != e.cy || f.body > e.body) test(e, f);
+        if (f.stretched ? (f.cy > e.cy || (f.cy == e.cy && f.body > e.body)) : f.body != e.body)
+          test(e, f);
       });
     }
     // Against every coarser level, from whichever side has fewer bodies: a ground box scans the

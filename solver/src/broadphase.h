@@ -148,12 +148,14 @@ class Broadphase {
   void for_each_near_pair(const Bodies& bodies, Fn&& fn);
 
   // fn(j) once for every body j != body whose box now overlaps body's box by more than
-  // `tolerance` on both axes. Order depends only on positions and solve order.
+  // `tolerance` on both axes, in an order that depends on where the bodies were filed (the last
+  // build() and the overlay): callers that need an order sort what they find.
   template <class Fn>
   void for_each_overlap(const Bodies& bodies, std::uint32_t body, double tolerance, Fn&& fn) const;
 
   // fn(j) once for every body whose box now comes within `slack` of the box (x +- hx, y +- hy)
-  // on both axes (slack 0: touching counts). Order depends only on positions and solve order.
+  // on both axes (slack 0: touching counts), in an order that depends on where the bodies were
+  // filed: callers that need an order sort what they find, or keep only an order-free answer.
   template <class Fn>
   void for_each_in_box(const Bodies& bodies, double x, double y, double hx, double hy, double slack,
                        Fn&& fn) const;

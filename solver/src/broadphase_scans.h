@@ -121,14 +121,14 @@ void Broadphase::for_each_near_pair(const Bodies& bodies, Fn&& fn) {
     const Level& level = levels_[l];
     const auto last_x = static_cast<std::int32_t>(level.width - 1);
     const auto last_y = static_cast<std::int32_t>(level.height - 1);
-    // Within the level, half the neighbourhood: the own row (each pair once, by slot) and the
-    // rows above; the rows below find e when it is their turn. Boxes no larger than the level's
-    // largest that are slack apart have centres at most a cell apart, so in the next cells;
-    // with one of them stretched (by at most that largest half extent), at most 2 cells apart.
-    // A pair with a stretched body is the stretched body's to find: an unstretched entry scans
-    // the next cells for unstretched bodies only, a stretched one two cells all round for the
-    // unstretched and half of that for the stretched. Near lists are sorted (ChainState), so
-    // which side finds a pair changes nothing: the pairs are the same set.
+    // Within the level, each pair once. Boxes no larger than the level's largest that are slack
+    // apart have centres at most a cell apart, so in the next cells; with one of them stretched
+    // (by at most that largest half extent), at most 2 cells apart. Two unstretched bodies are
+    // found by half the neighbourhood of the next cells: the own row (by slot) and the row above,
+    // the row below finding e when it is its turn. A pair with a stretched body is the stretched
+    // body's to find: two cells all round for an unstretched partner, the own row and the two
+    // above for a stretched one. Near lists are sorted (ChainState), so which side finds a pair
+    // changes nothing.
     for (const Entry& e : level.entries) {
       if (e.out) continue;
       if (!e.stretched) {

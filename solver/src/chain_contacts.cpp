@@ -54,8 +54,9 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
   }
   // Walked body by body in solve order, each pair taken at its later body: the earlier one was
   // just read and is still in cache, and the contacts come out in an order that depends on the
-  // bodies alone. A body filed again since the scan takes its pairs from the broadphase, all at
-  // its own turn (those with another such body at the later one), and is skipped in near lists.
+  // bodies alone. A body filed again since the scan takes its pairs from the broadphase (those
+  // with another such body at the later one), is skipped in near lists, and its pairs are merged
+  // in afterwards (below).
   contacts_.clear();
   const Bodies::Box* const box = bodies.box.data();
   const OverlapTest test(tol);
@@ -99,8 +100,9 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
   // The contacts come out ordered by their later body, then their earlier one, as a scan with no
   // body filed again since would give them: those of the bodies filed again are found apart and
   // merged in, so which bodies were filed again, and when, changes no result.
-  // near_pairs_ holds them (it is not read again until the next scan refills it, and has room for
-  // as many pairs as the scan found).
+  // near_pairs_ holds them: no scan ran in this call (a scan leaves no body stale), and nothing
+  // reads it again until the next scan refills it; it has room for as many pairs as that scan
+  // found, and grows (once) where more were filed again.
   std::vector<Pair>& refiled_pairs = near_pairs_;
   refiled_pairs.clear();
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {

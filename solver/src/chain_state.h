@@ -31,9 +31,10 @@ class ChainState {
   // A fresh mark for the next chain.
   void begin_chain();
 
-  // Appends to `out` every body that now overlaps `around`: from its near pairs and the bodies the
-  // broadphase filed again since they were taken, or, when `around` itself was filed again, from
-  // the grid. True when one of them is immovable. Inline: every body a chain reaches takes it.
+  // Appends to `out` every body that now overlaps `around`, in slot order: from its near pairs
+  // and the bodies the broadphase filed again since they were taken, or, when `around` itself was
+  // filed again, from the grid; the same list whichever way. True when one of them is immovable.
+  // Inline: every body a chain reaches takes it.
   template <class Out>
   bool gather_overlaps(StepContext& ctx, std::uint32_t around, Out& out) const {
     return gather_overlaps(ctx, around, out, OverlapTest(ctx.def.touch_tolerance));

@@ -10,7 +10,8 @@ namespace {
 
 constexpr double kInside = -std::numeric_limits<double>::infinity();
 // Flush neighbours a face is checked against: a join is made of a few tiles, and a face with more
-// counts as uncovered beyond them (a real edge is the safe answer).
+// counts as uncovered beyond them (a real edge is the safe answer). Those of the lowest slots are
+// kept, so which ones count does not depend on the order the broadphase finds them in.
 constexpr int kMaxCovers = 8;
 
 }  // namespace
@@ -29,15 +30,23 @@ bool face_covered(const StepContext& ctx, std::uint32_t b, int axis, int side, d
   centre[u] = 0.5 * (lo + hi);
   half[u] = 0.5 * (hi - lo);
   double from[kMaxCovers], to[kMaxCovers];
+  std::uint32_t slot[kMaxCovers];
   int count = 0;
   ctx.broadphase.for_each_in_box(
       bodies, centre[0], centre[1], half[0], half[1], tol, [&](std::uint32_t j) {
-        if (j == b || !bodies.immovable(j) || count == kMaxCovers) return;
+        if (j == b || !bodies.immovable(j)) return;
         const double near = bodies.pos(axis, j) - side * bodies.half(axis, j);
         if (std::abs(near - face) > tol) return;
-        from[count] = bodies.pos(u, j) - bodies.half(u, j);
-        to[count] = bodies.pos(u, j) + bodies.half(u, j);
-        ++count;
+        int k = count;
+        if (count == kMaxCovers) {  // full: j takes the place of the highest slot, if lower
+          k = static_cast<int>(std::max_element(slot, slot + kMaxCovers) - slot);
+          if (slot[k] < j) return;
+        } else {
+          ++count;
+        }
+        slot[k] = j;
+        from[k] = bodies.pos(u, j) - bodies.half(u, j);
+        to[k] = bodies.pos(u, j) + bodies.half(u, j);
       });
   // Does the union of the neighbours' spans reach from lo to hi?
   double reached = lo;

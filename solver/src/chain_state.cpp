@@ -70,6 +70,7 @@ void ChainState::begin_pass(const Bodies& bodies, const std::vector<Pair>* near_
   // it, in the scan's row-by-row order, which insertion sort would take quadratic time over.
   constexpr std::uint32_t kInsertionSortMax = 32;
   for (std::uint32_t i = 0; i < n; ++i) {
+    if (near_start_[i + 1] - near_start_[i] < 2) continue;  // no list at all holds no buffer
     std::uint32_t* const first = near_.data() + near_start_[i];
     std::uint32_t* const last = near_.data() + near_start_[i + 1];
     if (last - first > kInsertionSortMax) {

@@ -85,32 +85,33 @@ void bulldozer(World& w) {
   }
 }
 
-// Boxes from 5 cm to 1.6 m dropped into a bin: many sizes, many grid levels.
-void mixed_pile(World& w) {
-  add_floor(w, 30.0);
-  w.create_body(static_box(-12.0, 10.0, 1.0, 10.0));
-  w.create_body(static_box(12.0, 10.0, 1.0, 10.0));
-  std::uint32_t seed = 777u;
+// `count` boxes of half extents min_half to max_half poured into a bin whose inner half width is
+// `half_width`, in rows as wide as the bin holds, each box a little off its place.
+void pour(World& w, double half_width, int count, double min_half, double max_half,
+          std::uint32_t seed) {
+  add_floor(w, half_width + 10.0);
+  w.create_body(static_box(-half_width - 1.0, 40.0, 1.0, 40.0));
+  w.create_body(static_box(half_width + 1.0, 40.0, 1.0, 40.0));
   auto next = [&seed] { return (seed = seed * 1664525u + 1013904223u) >> 8; };
-  for (int i = 0; i < 260; ++i) {
-    const double half = 0.025 + (next() % 1000) * 0.00078;
-    w.create_body(dynamic_box(-10.0 + (next() % 2000) * 0.01, 1.0 + 0.5 * i, half));
+  const double pitch = 2.0 * max_half + 0.1;
+  const int columns = std::max(1, static_cast<int>(2.0 * half_width / pitch));
+  for (int i = 0; i < count; ++i) {
+    const double half = min_half + (max_half - min_half) * (next() % 1000) * 1e-3;
+    const double x = -half_width + 0.5 * pitch + (i % columns) * pitch + (next() % 10) * 0.005;
+    const double y = 0.5 * pitch + (i / columns) * pitch + (next() % 10) * 0.01;
+    w.create_body(dynamic_box(x, y, half));
   }
 }
 
-// 2,600 boxes poured into a bin: more than a block of the threaded contact walk (kBlock), so
-// the contacts of two threads are gathered in blocks and joined.
+// Boxes from 5 cm to 1.6 m: many sizes, many grid levels.
+void mixed_pile(World& w) {
+  pour(w, 11.0, 260, 0.025, 0.8, 777u);
+}
+
+// 2,600 boxes: more than a block of the threaded contact walk (kBlock), so the contacts of two
+// threads are gathered in blocks and joined.
 void big_pile(World& w) {
-  add_floor(w, 40.0);
-  w.create_body(static_box(-30.0, 20.0, 1.0, 20.0));
-  w.create_body(static_box(30.0, 20.0, 1.0, 20.0));
-  std::uint32_t seed = 4242u;
-  auto next = [&seed] { return (seed = seed * 1664525u + 1013904223u) >> 8; };
-  for (int i = 0; i < 2600; ++i) {
-    const double half = 0.1 + (next() % 1000) * 0.0003;
-    w.create_body(
-        dynamic_box(-28.0 + (i % 70) * 0.8, 0.5 + 0.8 * (i / 70) + (next() % 10) * 0.01, half));
-  }
+  pour(w, 29.0, 2600, 0.1, 0.4, 4242u);
 }
 
 std::vector<Case> cases() {

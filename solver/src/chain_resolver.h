@@ -50,9 +50,9 @@ class ChainResolver {
   // Steps that scanned the near pairs, and steps that took them from an earlier scan while some
   // body was filed again since (those whose contacts and overlaps merge the refiled ones in).
   std::uint64_t scans() const { return scans_; }
+  std::uint64_t reuses_with_refiled() const { return reuses_with_refiled_; }
   // The last pass's contacts, in the order it found them (before order_contacts): for tests.
   std::span<const Pair> contacts() const { return contacts_; }
-  std::uint64_t reuses_with_refiled() const { return reuses_with_refiled_; }
   // The next step reads a squeeze this one or the last remembered (ForceStatic::kept_squeeze):
   // besides the bodies, the only state a step hands the next.
   bool remembers_squeezes() const { return walls_.remembers_squeezes(); }

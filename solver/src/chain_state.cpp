@@ -65,26 +65,9 @@ void ChainState::begin_pass(const Bodies& bodies, const std::vector<Pair>* near_
   }
   // Each list in slot order: the order a chain meets a body's overlaps in is then theirs alone,
   // not that of the scan's cells, so when the near pairs were scanned, and which bodies beyond
-  // the overlapping ones they hold, changes no result. Most lists are short (a row's body has
-  // two or three entries, a pile's six or so): insertion sort; a ground's holds every body on
-  // it, in the scan's row-by-row order, which insertion sort would take quadratic time over.
-  constexpr std::uint32_t kInsertionSortMax = 32;
-  for (std::uint32_t i = 0; i < n; ++i) {
-    if (near_start_[i + 1] - near_start_[i] < 2) continue;  // no list at all holds no buffer
-    std::uint32_t* const first = near_.data() + near_start_[i];
-    std::uint32_t* const last = near_.data() + near_start_[i + 1];
-    if (last - first > kInsertionSortMax) {
-      std::sort(first, last);
-      continue;
-    }
-    for (std::uint32_t* p = first + 1; p < last; ++p) {
-      const std::uint32_t e = *p;
-      std::uint32_t* q = p;
-      for (; q > first && q[-1] > e; --q)
-        *q = q[-1];
-      *q = e;
-    }
-  }
+  // the overlapping ones they hold, changes no result.
+  for (std::uint32_t i = 0; i < n; ++i)
+    std::sort(near_.begin() + near_start_[i], near_.begin() + near_start_[i + 1]);
   // Each body's lower neighbours, in the order of its near list.
   resize_buffer(lower_start_, n + 1);
   resize_buffer(lower_, near_.size() / 2);

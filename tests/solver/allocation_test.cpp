@@ -7,11 +7,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdlib>
 #include <functional>
 #include <new>
+#include <numeric>
+#include <random>
 #include <vector>
 
 // The replacements below pair malloc with free. GCC inlines them into library code that calls
@@ -195,13 +198,9 @@ TEST(Allocation, RenumberingTheBodiesAllocatesNothing) {
   w.step(1.0 / 60.0);  // the bodies take their slots in the first step
   ASSERT_EQ(impl.bodies.dynamic_end, 1200u);
   std::vector<std::uint32_t> shuffled(impl.bodies.size());
-  for (std::uint32_t i = 0; i < shuffled.size(); ++i)
-    shuffled[i] = i;
-  std::uint32_t seed = 99u;
-  for (std::uint32_t i = impl.bodies.dynamic_end; i > 1; --i) {
-    seed = seed * 1664525u + 1013904223u;
-    std::swap(shuffled[i - 1], shuffled[(seed >> 8) % i]);
-  }
+  std::iota(shuffled.begin(), shuffled.end(), 0u);
+  std::mt19937 rng(99u);
+  std::shuffle(shuffled.begin(), shuffled.begin() + impl.bodies.dynamic_end, rng);
   int renumberings = 0;
   for (int s = 1; s < 240; ++s) {
     w.set_drive(lift, {0.0, s % 40 < 20 ? 0.5 : -0.5});

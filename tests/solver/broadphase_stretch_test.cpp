@@ -173,12 +173,6 @@ TEST_P(BroadphaseStretch, WithoutAStepEveryBodyIsFiledAtItsBox) {
   EXPECT_EQ(near, brute_force(b, -bp.slack()));
 }
 
-// A stretch cut at its level's largest half extent is no larger than that, to the bit: the
-// near-pair scan looks two cells around an entry, which holds every pair only while the stretch
-// passes that half extent by less than the slack, and the slack is a quarter of the finest level's
-// largest half extent. A float stretch rounded to nearest passed it by up to 2^-24 of it: in a
-// level 2^21 times coarser than the finest (boulders beside pebbles) that missed overlapping pairs.
-// 1000.000031 is such a half extent: its nearest float is 1000.000061.
 // The near-pair scan gives every pair of filed boxes (each stretched along its way, or not) that
 // come within the slack, once, and no other: against brute force over the filed boxes, on 16
 // layouts of the mix going every way and along y only. Stretched and unstretched bodies are found
@@ -223,6 +217,12 @@ TEST_P(BroadphaseStretch, TheNearPairsAreExactlyThoseOfTheFiledBoxes) {
   }
 }
 
+// A stretch cut at its level's largest half extent is no larger than that, to the bit: the
+// near-pair scan looks two cells around a stretched entry, which holds every pair only while the
+// stretch passes that half extent by less than the slack, and the slack is a quarter of the
+// finest level's largest half extent. A float stretch rounded to nearest passed it by up to 2^-24
+// of it: in a level 2^21 times coarser than the finest (boulders beside pebbles) that missed
+// overlapping pairs. 1000.000031 is such a half extent: its nearest float is 1000.000061.
 TEST(BroadphaseStretchCut, ACutStretchIsNoLargerThanItsLevelsLargestBody) {
   constexpr double kLargest = 1000.000031;
   ASSERT_GT(static_cast<double>(static_cast<float>(kLargest)), kLargest);

@@ -7,7 +7,6 @@
 
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -16,12 +15,9 @@ namespace chain {
 namespace {
 
 using testing::add_floor;
+using testing::bits;
 using testing::dynamic_box;
 using testing::kinematic_box;
-
-std::uint64_t bits(double v) {
-  return std::bit_cast<std::uint64_t>(v);
-}
 
 class Lockstep {
  public:

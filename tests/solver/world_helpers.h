@@ -5,7 +5,9 @@
 #include <chain/world.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace chain::testing {
@@ -60,6 +62,24 @@ inline double max_penetration(const World& w, const std::vector<BodyId>& ids,
     }
   }
   return deepest;
+}
+
+// A double's bits, for tests that compare results exactly (+0 and -0, NaN payloads apart).
+inline std::uint64_t bits(double v) {
+  return std::bit_cast<std::uint64_t>(v);
+}
+
+// Bodies of ids 0 .. count - 1 whose centre or velocity differ in any bit between two worlds.
+inline std::size_t bodies_apart(const World& a, const World& b, std::uint32_t count) {
+  std::size_t apart = 0;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const BodyId id{i};
+    const Vec2 p = a.position(id), q = b.position(id), u = a.velocity(id), v = b.velocity(id);
+    if (bits(p.x) != bits(q.x) || bits(p.y) != bits(q.y) || bits(u.x) != bits(v.x) ||
+        bits(u.y) != bits(v.y))
+      ++apart;
+  }
+  return apart;
 }
 
 inline const char* variant_name(Variant v) {

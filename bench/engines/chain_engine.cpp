@@ -55,6 +55,8 @@ enum Counter {
   kBudgetHits,
   kCrushEvents,
   kAtRest,
+  kResting,
+  kRedone,
   kCount
 };
 const std::vector<CounterDef>& counter_list() {
@@ -66,7 +68,11 @@ const std::vector<CounterDef>& counter_list() {
       {"budget_hits", Aggregate::kSum, "chains cut short by the work budget", "budget"},
       {"crush_events", Aggregate::kSum, "bodies squeezed between two immovable ones", "crushes"},
       {"skipped_steps", Aggregate::kSum, "steps skipped as the fixed point they were (skip_rest)",
-       ""}};
+       ""},
+      {"resting_bodies", Aggregate::kMean,
+       "bodies of resting islands left out per step, each the fixed point it was (skip_rest)", ""},
+      {"redone_steps", Aggregate::kSum,
+       "steps that left islands out, met one and were solved again whole (skip_rest)", ""}};
   return list;
 }
 
@@ -177,7 +183,8 @@ class ChainEngine final : public Engine {
     counters_ = {static_cast<double>(s.passes),        static_cast<double>(s.contacts),
                  static_cast<double>(s.resolve_calls), static_cast<double>(s.max_depth),
                  static_cast<double>(s.budget_hits),   static_cast<double>(s.crush_events),
-                 static_cast<double>(s.skipped)};
+                 static_cast<double>(s.skipped),       static_cast<double>(s.resting),
+                 static_cast<double>(s.redone)};
     return counters_;
   }
 

@@ -113,6 +113,15 @@ class Broadphase {
   // Body was filed again since the near pairs were last scanned: its near pairs are out of date,
   // and the other bodies' near pairs may miss it.
   bool stale(std::uint32_t body) const { return in_overlay_[body] && epoch_of_[body] > scan_; }
+  // fn(body) for every stale body, in the order they were filed again (callers keep only an
+  // order-free answer).
+  template <class Fn>
+  void for_each_stale(Fn&& fn) const {
+    if (stale_ == 0) return;
+    for (const std::uint32_t i : members_) {
+      if (stale(i)) fn(i);
+    }
+  }
   // False when no body filed again since the near pairs were last scanned can now overlap the
   // box (x +- hx, y +- hy) by more than `tolerance`: the box's overlaps are all among its near
   // pairs. The test is against a box around every place such a body was filed, grown by the

@@ -247,12 +247,22 @@ void ChainResolver::order_contacts(StepContext& ctx) {
   }
 }
 
+// Each body's immovable contacts, grouped where its first one is and sorted there by when the
+// body entered each: the bodies keep the order order_contacts gave them, so one body's several
+// contacts reorder only its own, and a contact island's order is the same whatever the others'
+// bodies touch (a sort of all of them by body, as before, moved one island's bodies as soon as
+// some body anywhere touched two immovable ones).
 void ChainResolver::order_entries(StepContext& ctx, std::size_t count) {
   entries_.clear();
-  for (std::size_t k = 0; k < count; ++k)
-    entries_.push_back({ordered_[k], entry_face(ctx, ordered_[k].a, ordered_[k].b).entry});
+  first_entry_.assign(involved_.size(), kUnreached);
+  for (std::size_t k = 0; k < count; ++k) {
+    const Pair& c = ordered_[k];
+    std::uint32_t& first = first_entry_[local_[c.a]];
+    if (first == kUnreached) first = static_cast<std::uint32_t>(k);
+    entries_.push_back({c, entry_face(ctx, c.a, c.b).entry, first});
+  }
   std::sort(entries_.begin(), entries_.end(), [](const Entry& p, const Entry& q) {
-    if (p.pair.a != q.pair.a) return p.pair.a < q.pair.a;
+    if (p.first != q.first) return p.first < q.first;
     if (p.when != q.when) return p.when < q.when;
     return p.pair.b < q.pair.b;
   });

@@ -35,6 +35,11 @@ void ChainResolver::resolve(StepContext& ctx) {
       gather_suspect_contacts(ctx);
     }
     state_.clear_suspects();
+    if (ctx.skipped != nullptr) {
+      // Bodies the step leaves out resolve nothing; a pair with one of them is a meeting the
+      // step's check finds (islands.h), and the step is solved again whole.
+      std::erase_if(contacts_, [&](const Pair& p) { return ctx.skipped[p.a] || ctx.skipped[p.b]; });
+    }
     ++ctx.stats.passes;
     ctx.stats.contacts += static_cast<std::uint32_t>(contacts_.size());
     if (contacts_.empty()) {
@@ -158,7 +163,7 @@ void ChainResolver::run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b
 bool ChainResolver::open(StepContext& ctx, std::uint32_t a, std::uint32_t b, double extra, int axis,
                          bool force_static, std::uint32_t anchor, std::uint32_t follower) {
   last_ = Result{0.0, anchor, 0};
-  if (!state_.spend(ctx)) return false;
+  if (!state_.spend(ctx, a)) return false;
   Bodies& bodies = ctx.bodies;
   state_.visit(a);
   if (!bodies.immovable(b)) state_.visit(b);

@@ -51,11 +51,22 @@ class ChainResolver {
   // body was filed again since (those whose contacts and overlaps merge the refiled ones in).
   std::uint64_t scans() const { return scans_; }
   std::uint64_t reuses_with_refiled() const { return reuses_with_refiled_; }
+  // The near lists of the last scan, while they serve the broadphase as it is (its generation):
+  // every body a body not filed again since could have come within 2 refile distances of is in
+  // its list (entries: ChainState::entry_slot).
+  bool near_lists_serve(const Broadphase& bp) const { return near_generation_ == bp.generation(); }
+  std::span<const std::uint32_t> near(std::uint32_t body) const { return state_.near(body); }
   // The last pass's contacts, in the order it found them (before order_contacts): for tests.
   std::span<const Pair> contacts() const { return contacts_; }
   // The next step reads a squeeze this one or the last remembered (ForceStatic::kept_squeeze):
   // besides the bodies, the only state a step hands the next.
   bool remembers_squeezes() const { return walls_.remembers_squeezes(); }
+  bool squeezed_lately(std::uint32_t body) const { return walls_.squeezed_lately(body); }
+  // Around a step that may be solved again (ForceStatic::mark): what it squeezed is undone, or
+  // kept.
+  void mark() { walls_.mark(); }
+  void undo() { walls_.undo(); }
+  void keep() { walls_.keep(); }
 
  private:
   enum class Stage : std::uint8_t { kBack, kForward };
@@ -76,8 +87,8 @@ class ChainResolver {
   void gather_contacts(StepContext& ctx);
   void gather_suspect_contacts(StepContext& ctx);
   void order_contacts(StepContext& ctx);
-  // Sorts the contacts with immovable bodies (the first `count` of ordered_) by body, then by
-  // when the body entered each.
+  // Orders each body's contacts with immovable bodies (among the first `count` of ordered_) by
+  // when the body entered each, at the place of its first.
   void order_entries(StepContext& ctx, std::size_t count);
   void run_chain(StepContext& ctx, std::uint32_t a, std::uint32_t b);
   // Resolves (a, b): returns true when the push was split and the frame must go on to chain;
@@ -113,8 +124,10 @@ class ChainResolver {
   struct Entry {
     Pair pair;
     double when;
+    std::uint32_t first;  // where the body's first immovable contact is in the order
   };
   std::vector<Entry> entries_;
+  std::vector<std::uint32_t> first_entry_;  // per body of involved_
   std::vector<Pair> contacts_, ordered_, near_pairs_;
   // Contact ordering, over the bodies the contacts touch (numbered through local_).
   std::vector<std::uint32_t> involved_, local_, local_mark_;

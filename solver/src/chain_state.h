@@ -154,13 +154,15 @@ class ChainState {
   void report_crush(StepContext& ctx, std::uint32_t body, std::uint32_t anchor,
                     std::uint32_t blocker, int axis);
 
-  // Takes a pair resolution from the step's budget; false (and the chain cut) when none is left.
-  bool spend(StepContext& ctx) {
+  // Takes a pair resolution from the step's budget for a chain through `body`; false (and the
+  // chain cut) when none is left.
+  bool spend(StepContext& ctx, std::uint32_t body) {
     if (ctx.budget == 0) {
       cut = true;
       return false;
     }
     --ctx.budget;
+    if (ctx.spent != nullptr) ++ctx.spent[body];
     ++ctx.stats.resolve_calls;
     return true;
   }

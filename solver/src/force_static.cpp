@@ -81,7 +81,7 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
         if (squeeze(ctx, state, item, c, dir)) break;
         continue;
       }
-      if (!state.spend(ctx)) break;
+      if (!state.spend(ctx, c)) break;
       // A wall the chain placed already, met by another wall of the chain on that wall's free
       // side, rests on the higher of the two: it moves on and its own walls follow (it is
       // queued again). Each such move is further the same way, so this ends.
@@ -128,7 +128,7 @@ void ForceStatic::run(StepContext& ctx, ChainState& state) {
   if (squeezes_ && depth <= kept_squeeze(ctx, w, c, axis) + ctx.def.touch_tolerance) {
     return Between::kNext;
   }
-  if (!state.spend(ctx)) return Between::kStop;
+  if (!state.spend(ctx, c)) return Between::kStop;
   if (!yield(ctx, state, w, c, axis)) {
     state.flag(w, c);  // a body beyond w keeps it from yielding: the next pass takes it
     return Between::kNext;
@@ -188,6 +188,21 @@ void ForceStatic::begin_step(std::size_t bodies) {
   if (++step_ == 0xffffffffu) forget_slots();
   squeezes_ = squeezes_ > 0 ? squeezes_ - 1 : 0;  // counts down from 2: this step and the next
   rows_ = 0;
+}
+
+void ForceStatic::mark() {
+  marked_ = {step_, squeezes_, rows_, true};
+  undo_.clear();
+}
+
+void ForceStatic::undo() {
+  for (auto k = undo_.size(); k-- > 0;)
+    squeezed_[undo_[k].first] = undo_[k].second;
+  undo_.clear();
+  step_ = marked_.step;
+  squeezes_ = marked_.squeezes;
+  rows_ = marked_.rows;
+  marked_.on = false;
 }
 
 void ForceStatic::forget_slots() {
@@ -282,7 +297,10 @@ bool ForceStatic::squeeze_row(StepContext& ctx, ChainState& state, std::uint32_t
     state.flag(b);  // what rests on the row may overlap it now
     // A lone body is centred between the two faces again from scratch every step; a row keeps
     // its squeeze, so that the step adds only what it closes (kept_squeeze).
-    if (row_.size() > 1) squeezed_[b] = step_;
+    if (row_.size() > 1) {
+      if (marked_.on) undo_.push_back({b, squeezed_[b]});
+      squeezed_[b] = step_;
+    }
   }
   ctx.note_push(row_.back(), blocker, axis, -side);  // held by the blocker too (velocity rule)
   if (row_.size() > 1) squeezes_ = 2;

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace chain::detail {
@@ -41,6 +42,19 @@ class ForceStatic {
   void forget_slots();
   // Some row was squeezed this step or the last: the next step reads what this one remembered.
   bool remembers_squeezes() const { return squeezes_ != 0; }
+  // Body was in a squeezed row this step, the last or the one before: the steps it begins read
+  // a squeeze they may not read again, so they are not its fixed point (islands.h).
+  bool squeezed_lately(std::uint32_t body) const {
+    return body < squeezed_.size() && squeezed_[body] != 0 && squeezed_[body] + 2 >= step_;
+  }
+  // What a step changes of the squeezes, to be undone when that step is solved again (a step
+  // that skipped resting islands and met one): mark() before it, then undo() or keep().
+  void mark();
+  void undo();
+  void keep() {
+    marked_.on = false;
+    undo_.clear();
+  }
   // How deep a placed against b along axis stays: the overlap they had when the step began when
   // both were in a squeezed row the step before (a crushed row keeps its squeeze, and the step
   // adds only what it closes), else 0.
@@ -99,6 +113,12 @@ class ForceStatic {
 
   std::vector<std::uint32_t> against_;   // per slot: the body a wall was placed against
   std::vector<std::uint32_t> squeezed_;  // per slot: the last step it was in a squeezed row
+  struct Marked {
+    std::uint32_t step, squeezes, rows;
+    bool on = false;
+  } marked_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>>
+      undo_;  // (slot, squeezed_ before), since mark()
   std::uint32_t step_ = 1;
   std::uint32_t squeezes_ = 0;  // rows squeezed this step and the last
   std::uint32_t rows_ = 0;      // rows squeezed this step

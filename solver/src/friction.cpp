@@ -131,7 +131,7 @@ void Friction::normal_impulses(const Bodies& bodies, const std::vector<Link>& li
 }
 
 void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<Link>& links,
-                     const std::vector<Point>& pre_velocity, double dt) {
+                     const std::vector<Point>& pre_velocity, double dt, Reach* reach) {
   if (links.empty()) return;
   const std::size_t n_links = links.size();
   // Per body, as many as the world has; per link, as many as this step has, growing by a quarter
@@ -198,6 +198,7 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
     bodies.pos(0, slot) += 0.5 * dvx * dt;
     bodies.pos(1, slot) += 0.5 * dvy * dt;
     broadphase.note_move(slot, bodies.x(slot), bodies.y(slot));
+    if (reach != nullptr) reach->note(slot, bodies.x(slot), bodies.y(slot));
   }
 }
 

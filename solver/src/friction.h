@@ -24,6 +24,7 @@
 
 #include "bodies.h"
 #include "broadphase.h"
+#include "reach.h"
 #include "velocity_response.h"
 
 #include <cstdint>
@@ -34,9 +35,10 @@ namespace chain::detail {
 class Friction {
  public:
   // `pre_velocity`: per dynamic slot, the velocity after drives and gravity, before push-out.
+  // Each move is noted in `reach` (may be null) as well as in the broadphase.
   void apply(Bodies& bodies, Broadphase& broadphase,
              const std::vector<VelocityResponse::Link>& links,
-             const std::vector<Point>& pre_velocity, double dt);
+             const std::vector<Point>& pre_velocity, double dt, Reach* reach);
 
  private:
   using Link = VelocityResponse::Link;

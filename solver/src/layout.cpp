@@ -25,7 +25,6 @@ std::span<const std::uint32_t> Layout::plan(const Bodies& bodies,
                                             std::span<const std::uint32_t> reached,
                                             std::size_t jumps) {
   if (jumps * kJumpShare <= bodies.size()) return {};
-  steps_since_ = 0;
   // The reached bodies in the order reached, the other dynamic bodies as they were, and the
   // immovable ones where they are (slot ranges by kind hold).
   order_.clear();

@@ -28,9 +28,17 @@ class Layout {
   // the body set changes. It does not restart the count of steps since the last renumbering, so
   // a world whose body set changes every step is still renumbered at most once in 32 steps.
   void reset(std::size_t bodies);
-  // Call once after every step: true when this step may renumber (at most one in kMinSteps),
-  // and plan() is to be asked.
-  bool due() { return ++steps_since_ >= kMinSteps; }
+  // Call once after every step: true on every kMinSteps-th step, when plan() is to be asked. A
+  // fixed schedule, whatever plan() answered before: a step that skips resting islands
+  // (islands.h) cannot give plan() the reach order of the whole world, so the steps that ask are
+  // known ahead (due_next()) and solved whole.
+  bool due() {
+    if (++steps_since_ < kMinSteps) return false;
+    steps_since_ = 0;
+    return true;
+  }
+  // Whether the next call of due() returns true.
+  bool due_next() const { return steps_since_ + 1 >= kMinSteps; }
   // After a step that due() allowed and that first reached the dynamic bodies `reached` in that
   // order, with `jumps` jumps in memory (ChainState::reach_jumps): the order to renumber the
   // slots in (slot i takes the body of slot order[i]), or empty when the layout is good enough.
@@ -42,7 +50,7 @@ class Layout {
   std::vector<std::uint32_t> order_;
   std::vector<std::uint8_t> placed_;
   Bodies::Spare spare_;
-  // Steps since the last renumbering; the first step may renumber.
+  // Steps since plan() was last asked; the first step asks.
   std::uint32_t steps_since_ = kMinSteps - 1;
 };
 

@@ -101,9 +101,23 @@ void Motion::integrate_range(Bodies& b, Broadphase& broadphase, Vec2 gravity, do
 
 template <bool kFindFast, bool kKeepVelocities>
 void Motion::integrate_all(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt,
-                           WorkerPool& pool) {
+                           WorkerPool& pool, const std::span<const SlotRun>* only) {
   const std::uint32_t dynamic_end = b.dynamic_end, movable_end = b.movable_end;
   if (far_.size() < movable_end) resize_buffer(far_, movable_end);
+  if (only != nullptr) {
+    // Run by run in slot order into one list: the notes of one block over the runs' slots.
+    Notes notes;
+    for (const SlotRun& r : *only) {
+      const std::uint32_t split = std::clamp(dynamic_end, r.begin, r.end);
+      integrate_range<true, kFindFast, kKeepVelocities>(b, broadphase, gravity, dt, r.begin, split,
+                                                        0, notes);
+      integrate_range<false, kFindFast, kKeepVelocities>(b, broadphase, gravity, dt, split, r.end,
+                                                         0, notes);
+    }
+    fast_count_ = notes.fast;
+    broadphase.note_moves(b, notes.largest, {far_.data(), notes.far});
+    return;
+  }
   if (pool.threads() == 1 || movable_end <= kBlock) {
     // One block: the moves are noted once it is done, as with workers. Noted body by body, the
     // broadphase's margin was loaded and stored again for every body (the loop's stores of
@@ -146,21 +160,22 @@ void Motion::integrate_all(Bodies& b, Broadphase& broadphase, Vec2 gravity, doub
 }
 
 void Motion::integrate(Bodies& b, Broadphase& broadphase, Vec2 gravity, double dt, bool find_fast,
-                       bool keep_velocities, WorkerPool& pool) {
+                       bool keep_velocities, WorkerPool& pool,
+                       const std::span<const SlotRun>* only) {
   fast_count_ = 0;
   if (fast_.size() < b.movable_end) resize_buffer(fast_, b.movable_end);
   if (keep_velocities && pre_velocity.size() < b.dynamic_end)
     resize_buffer(pre_velocity, b.dynamic_end);
   if (find_fast) {
     if (keep_velocities) {
-      integrate_all<true, true>(b, broadphase, gravity, dt, pool);
+      integrate_all<true, true>(b, broadphase, gravity, dt, pool, only);
     } else {
-      integrate_all<true, false>(b, broadphase, gravity, dt, pool);
+      integrate_all<true, false>(b, broadphase, gravity, dt, pool, only);
     }
   } else if (keep_velocities) {
-    integrate_all<false, true>(b, broadphase, gravity, dt, pool);
+    integrate_all<false, true>(b, broadphase, gravity, dt, pool, only);
   } else {
-    integrate_all<false, false>(b, broadphase, gravity, dt, pool);
+    integrate_all<false, false>(b, broadphase, gravity, dt, pool, only);
   }
 }
 

@@ -11,6 +11,8 @@
 
 #include <chain/types.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -27,6 +29,29 @@ namespace chain::detail {
 inline constexpr double kFastDynamicShare = 0.5;
 inline constexpr double kFastKinematicShare = 1.0;
 
+// How far integrate() would move body i along its farther axis this step: for a body a step
+// leaves out (islands.h), what the step that solves it would have moved it, in the same
+// operations.
+inline double integrated_move(const Bodies& b, std::uint32_t i, Vec2 gravity, double dt) {
+  double vx = b.vx[i], vy = b.vy[i];
+  if (const std::uint8_t held = b.driven[i]; held != 0) {
+    if (held & kDriveX) vx = b.drive_x[i];
+    if (held & kDriveY) vy = b.drive_y[i];
+  }
+  if (i < b.dynamic_end) {
+    vx += gravity.x * b.gravity_scale[i] * dt;
+    vy += gravity.y * b.gravity_scale[i] * dt;
+  }
+  const double x0 = b.box[i].center[0], y0 = b.box[i].center[1];
+  const double x1 = x0 + vx * dt, y1 = y0 + vy * dt;
+  return std::max(std::abs(x1 - x0), std::abs(y1 - y0));
+}
+
+// Slots [begin, end): a run of the bodies a step solves.
+struct SlotRun {
+  std::uint32_t begin, end;
+};
+
 struct Motion {
   // Movable slots that moved fast this step, ascending (filled when sweeping is on).
   std::span<const std::uint32_t> fast() const { return {fast_.data(), fast_count_}; }
@@ -37,8 +62,11 @@ struct Motion {
   // start positions (and, as asked, the fast bodies and the velocities), and notes every move.
   // With workers, blocks of kBlock bodies are integrated at once and their notes combined in
   // block order: the same bits as one thread.
+  // `only`, when not null: the runs of movable slots to integrate, ascending (a step that leaves
+  // resting islands out, islands.h), on one thread; the others keep everything.
   void integrate(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt, bool find_fast,
-                 bool keep_velocities, WorkerPool& pool);
+                 bool keep_velocities, WorkerPool& pool,
+                 const std::span<const SlotRun>* only = nullptr);
 
   static constexpr std::uint32_t kBlock = 2048;
 
@@ -54,7 +82,7 @@ struct Motion {
                        std::uint32_t begin, std::uint32_t end, std::uint32_t out, Notes& notes);
   template <bool kFindFast, bool kKeepVelocities>
   void integrate_all(Bodies& bodies, Broadphase& broadphase, Vec2 gravity, double dt,
-                     WorkerPool& pool);
+                     WorkerPool& pool, const std::span<const SlotRun>* only);
 
   std::vector<std::uint32_t> fast_;  // room for every movable slot; the first fast_count_ count
   std::size_t fast_count_ = 0;

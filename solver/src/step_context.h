@@ -5,6 +5,7 @@
 #include "bodies.h"
 #include "broadphase.h"
 #include "motion.h"
+#include "reach.h"
 #include "stage_clock.h"
 #include "velocity_response.h"
 #include "worker_pool.h"
@@ -51,6 +52,16 @@ struct StepContext {
   StageClock& clock;  // laps the resolver's stages into `profile` when profiling
   StepProfile& profile;
   double dt;  // the step's, s
+  // Kept when resting islands may be skipped (islands.h): where each body went, what each body's
+  // chains spent of the budget, and the bodies this step leaves out (nullptr: none).
+  Reach* reach = nullptr;
+  std::uint32_t* spent = nullptr;
+  const std::uint8_t* skipped = nullptr;
+
+  void noted(std::uint32_t i) {
+    broadphase.note_move(i, bodies.x(i), bodies.y(i));
+    if (reach != nullptr) reach->note(i, bodies.x(i), bodies.y(i));
+  }
 
   double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
 
@@ -60,7 +71,7 @@ struct StepContext {
   double move(std::uint32_t i, int axis, double d, std::uint32_t follower = kNoSlot) {
     if (guarded(i, axis, d)) d = limit_move(i, axis, d, follower, nullptr, nullptr);
     bodies.pos(axis, i) += d;
-    broadphase.note_move(i, bodies.x(i), bodies.y(i));
+    noted(i);
     if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
     return d;
   }
@@ -79,7 +90,7 @@ struct StepContext {
     } else {
       bodies.pos(axis, i) = target;  // exactly: resting stacks rebuild the same positions
     }
-    broadphase.note_move(i, bodies.x(i), bodies.y(i));
+    noted(i);
     if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
     return d;
   }
@@ -89,7 +100,7 @@ struct StepContext {
   void set(std::uint32_t i, int axis, double target) {
     const double d = target - bodies.pos(axis, i);
     bodies.pos(axis, i) = target;
-    broadphase.note_move(i, bodies.x(i), bodies.y(i));
+    noted(i);
     if (def.velocity_rule == VelocityRule::kZero && d * vel(axis)[i] < 0.0) vel(axis)[i] = 0.0;
   }
 
@@ -128,6 +139,7 @@ struct StepContext {
                                           : (sign > 0 ? touching::kTop : touching::kBottom);
     add_touch(bodies.touching[a], a_side);
     add_touch(bodies.touching[b], b_side);
+    if (reach != nullptr && b >= bodies.movable_end) reach->touch(a, b, b_side);
     if (record_links) response.add(a, b, axis, sign);
   }
 };

@@ -52,6 +52,7 @@ void World::destroy_body(BodyId id) {
   Impl& w = *impl_;
   const std::uint32_t s = w.slot(id);
   w.rest.disturb();
+  w.islands.wake(s);
   if (w.bodies.friction[s] > 0.0) --w.rough_bodies;
   w.slot_of_id[id.value] = detail::kNoSlot;
   if (w.kill_in_place(s)) {
@@ -89,6 +90,7 @@ void World::set_drive(BodyId id, Vec2 velocity, DriveAxes axes) {
     e += check_range("drive velocity.y", velocity.y, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s");
   if (!e.empty()) throw std::invalid_argument(e);
   impl_->rest.disturb();
+  impl_->islands.wake(s);
   impl_->bodies.driven[s] = held;
   impl_->bodies.drive_x[s] = (held & detail::kDriveX) ? velocity.x : 0.0;
   impl_->bodies.drive_y[s] = (held & detail::kDriveY) ? velocity.y : 0.0;
@@ -97,6 +99,7 @@ void World::set_drive(BodyId id, Vec2 velocity, DriveAxes axes) {
 void World::clear_drive(BodyId id) {
   const std::uint32_t s = impl_->slot(id);
   impl_->rest.disturb();
+  impl_->islands.wake(s);
   impl_->bodies.driven[s] = 0;
 }
 
@@ -112,6 +115,7 @@ void World::set_velocity(BodyId id, Vec2 velocity) {
     throw std::invalid_argument(e);
   }
   impl_->rest.disturb();
+  impl_->islands.wake(s);
   impl_->bodies.vx[s] = velocity.x;
   impl_->bodies.vy[s] = velocity.y;
 }
@@ -126,51 +130,50 @@ void World::step(double dt) {
   detail::StageClock clock(w.profiling);
   w.profile = StepProfile{};
   const bool modern = w.def.variant == Variant::kModern;
-  if (modern && w.def.skip_rest && !w.dirty && w.rest.may_skip(dt, w.modern.remembers_squeezes())) {
+  const bool resting = modern && w.def.skip_rest;
+  // A skipped step hands the layout the last solved step's reach order: that of the whole world.
+  if (resting && !w.dirty && w.rest.may_skip(dt, w.modern.remembers_squeezes()) &&
+      !(w.last_partial && w.layout.due_next())) {
     w.skip_step();
     clock.lap(w.profile.layout);
     w.profile.total = clock.total();
     return;
   }
   w.prepare();
-  clock.lap(w.profile.prepare);
-
   const std::uint64_t examined = w.broadphase.examined();
-  const bool rough = modern && w.rough_bodies > 0;
-  w.motion.integrate(w.bodies, w.broadphase, w.def.gravity, dt, modern, rough, w.pool);
-  clock.lap(w.profile.integrate);
-
-  const std::uint64_t budget = static_cast<std::uint64_t>(w.def.budget_per_body) * w.live() + 1024u;
-  detail::StepContext ctx{w.bodies,
-                          w.broadphase,
-                          w.response,
-                          w.def,
-                          w.stats,
-                          w.crush_records,
-                          budget,
-                          w.motion,
-                          w.def.velocity_rule == VelocityRule::kInelastic || rough,
-                          modern,
-                          w.pool,
-                          clock,
-                          w.profile,
-                          dt};
-  if (modern) {
-    w.modern.resolve(ctx);  // laps continuous, contacts and chains itself
-  } else {
-    w.seed2014.resolve(ctx, w.creation_order);
-    clock.lap(w.profile.chains);
+  // Resting islands are left out (islands.h) but in the steps the layout may renumber after.
+  const bool partial = resting && w.islands.plan(w.bodies, w.broadphase, w.def.gravity, dt,
+                                                 w.def.touch_tolerance, w.layout.due_next());
+  const std::span<const detail::SlotRun> runs = w.islands.runs();
+  w.clear_touching(partial ? &runs : nullptr);
+  if (partial) {
+    w.islands.save(w.bodies);
+    w.modern.mark();
   }
-
-  if (w.def.velocity_rule == VelocityRule::kInelastic) {
-    w.response.apply(w.bodies, w.def.restitution_threshold, w.pool);
+  clock.lap(w.profile.prepare);
+  w.solve(dt, partial, clock);
+  if (partial) w.islands.touch_statics(w.bodies);  // before settle() wakes any
+  if (resting) {
+    const bool cut = w.stats.budget_hits > 0;
+    if (!w.islands.settle(w.bodies, w.broadphase, w.modern, w.motion.fast(), w.crush_records, cut,
+                          w.def.gravity, dt, w.def.touch_tolerance)) {
+      // A body came near an island left out: the step again, solving every body.
+      w.islands.undo(w.bodies);
+      w.modern.undo();
+      w.clear_records();
+      w.clear_touching(nullptr);
+      w.solve(dt, false, clock);
+      w.stats.redone = 1;
+      w.islands.settle(w.bodies, w.broadphase, w.modern, w.motion.fast(), w.crush_records,
+                       w.stats.budget_hits > 0, w.def.gravity, dt, w.def.touch_tolerance);
+      w.last_partial = false;
+    } else if (partial) {
+      w.modern.keep();
+      w.last_partial = true;
+    } else {
+      w.last_partial = false;
+    }
   }
-  clock.lap(w.profile.velocity);
-
-  if (rough)
-    w.friction.apply(w.bodies, w.broadphase, w.response.links(), w.motion.pre_velocity, dt);
-  clock.lap(w.profile.friction);
-
   w.file_report(examined);
   if (modern) {
     if (w.def.skip_rest) w.rest.after_step(w.bodies, dt);

@@ -10,6 +10,7 @@
 #include "broadphase.h"
 #include "chain_resolver.h"
 #include "friction.h"
+#include "islands.h"
 #include "layout.h"
 #include "motion.h"
 #include "rest.h"
@@ -56,12 +57,17 @@ struct World::Impl {
   detail::Seed2014Resolver seed2014;
   detail::Layout layout;
   detail::Rest rest;
+  detail::Islands islands;
+  bool last_partial = false;  // the last solved step left resting islands out (islands.h)
   StepStats stats;
   std::vector<detail::CrushRecord> crush_records;
   std::vector<CrushEvent> crushes;
   detail::WorkerPool pool;  // def.threads - 1 workers
   bool profiling = false;
   StepProfile profile;
+
+  // Resting islands are left out of steps (islands.h): modern, skip_rest.
+  bool keeps_islands() const { return def.variant == Variant::kModern && def.skip_rest; }
 
   std::uint32_t slot(BodyId id) const {
     if (id.value >= slot_of_id.size() || slot_of_id[id.value] == detail::kNoSlot) {
@@ -78,6 +84,7 @@ struct World::Impl {
     sorted_once = true;
     broadphase.configure(bodies);
     layout.reset(bodies.size());
+    islands.reset(keeps_islands() ? bodies.size() : 0);
     response.reserve(bodies.size());
     list_creation_order();
     dirty = false;
@@ -118,8 +125,10 @@ struct World::Impl {
       if (bodies.restitution[empty[k]] > 0.0) bodies.bounces = true;
     }
     bodies.truncate(committed);
-    for (std::size_t k = 0; k < placed.size(); ++k)
+    for (std::size_t k = 0; k < placed.size(); ++k) {
       broadphase.insert(bodies, empty[k]);
+      islands.wake(empty[k]);
+    }
     empty.erase(empty.begin(), empty.begin() + static_cast<std::ptrdiff_t>(placed.size()));
     return true;
   }
@@ -130,10 +139,77 @@ struct World::Impl {
       if (full || !place_created()) canonicalize();
       dirty = full = false;
     }
+    clear_records();
+  }
+  void clear_records() {
     stats = StepStats{};
     crush_records.clear();
     response.clear();
-    std::fill(bodies.touching.begin(), bodies.touching.end(), detail::TouchBits{});
+  }
+  // The touching flags of the bodies the step solves (`runs`; null: every body).
+  void clear_touching(const std::span<const detail::SlotRun>* runs) {
+    if (runs == nullptr) {
+      std::fill(bodies.touching.begin(), bodies.touching.end(), detail::TouchBits{});
+      return;
+    }
+    for (const detail::SlotRun& r : *runs)
+      std::fill(bodies.touching.begin() + r.begin, bodies.touching.begin() + r.end,
+                detail::TouchBits{});
+    // Static bodies are never left out.
+    std::fill(bodies.touching.begin() + bodies.movable_end, bodies.touching.end(),
+              detail::TouchBits{});
+  }
+
+  // Integration, resolution and velocities for one step: of every body, or (`partial`) of those
+  // the islands plan left in.
+  void solve(double dt, bool partial, detail::StageClock& clock) {
+    const bool modern_variant = def.variant == Variant::kModern;
+    const bool rough = modern_variant && rough_bodies > 0;
+    const std::span<const detail::SlotRun> runs = islands.runs();
+    motion.integrate(bodies, broadphase, def.gravity, dt, modern_variant, rough, pool,
+                     partial ? &runs : nullptr);
+    const bool resting = modern_variant && def.skip_rest;
+    detail::Reach* const reach = resting ? islands.begin_reach(bodies) : nullptr;
+    clock.lap(profile.integrate);
+
+    std::uint64_t budget = static_cast<std::uint64_t>(def.budget_per_body) * live() + 1024u;
+    // The islands left out spent this much when last solved: a step that solved them too would
+    // have as much less left for the others.
+    if (partial) budget -= std::min(budget, islands.skipped_spend());
+    detail::StepContext ctx{bodies,
+                            broadphase,
+                            response,
+                            def,
+                            stats,
+                            crush_records,
+                            budget,
+                            motion,
+                            def.velocity_rule == VelocityRule::kInelastic || rough,
+                            modern_variant,
+                            pool,
+                            clock,
+                            profile,
+                            dt};
+    if (resting) {
+      ctx.reach = reach;
+      ctx.spent = islands.spent();
+      ctx.skipped = partial ? islands.skipped() : nullptr;
+      stats.resting = partial ? islands.skipped_bodies() : 0;
+    }
+    if (modern_variant) {
+      modern.resolve(ctx);  // laps continuous, contacts and chains itself
+    } else {
+      seed2014.resolve(ctx, creation_order);
+      clock.lap(profile.chains);
+    }
+
+    if (def.velocity_rule == VelocityRule::kInelastic) {
+      response.apply(bodies, def.restitution_threshold, pool);
+    }
+    clock.lap(profile.velocity);
+
+    if (rough) friction.apply(bodies, broadphase, response.links(), motion.pre_velocity, dt, reach);
+    clock.lap(profile.friction);
   }
 
   // The step's counts and crush events, for last_step_stats() and crush_events().
@@ -182,6 +258,7 @@ struct World::Impl {
     list_creation_order();
     broadphase.renumber(order, layout.spare());
     modern.forget_slots();
+    islands.reset(keeps_islands() ? bodies.size() : 0);
   }
 };
 

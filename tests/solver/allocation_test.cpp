@@ -160,6 +160,7 @@ TEST(Allocation, WarmedUpStepsAllocateNothing) {
 TEST(Allocation, ThreadedStepsAllocateNothing) {
   WorldDef def = world_def(Variant::kModern, VelocityRule::kInelastic);
   def.threads = 3;
+  def.skip_rest = false;  // the wall rests: left out, it would run no block (next test)
   World w(def);
   build_busy_scene(w);
   w.create_body(static_box(500.0, -1.0, 400.0, 1.0));
@@ -170,6 +171,26 @@ TEST(Allocation, ThreadedStepsAllocateNothing) {
   allocations_during(w, 30);
   EXPECT_EQ(allocations_during(w, 120), 0);
   EXPECT_GT(w.last_step_stats().resolve_calls, 6000u);
+}
+
+// A busy scene beside a resting wall of 6,000 boxes whose islands are left out (islands.h), on
+// one thread and on three: waking and leaving out islands allocates nothing once warmed up.
+TEST(Allocation, StepsThatLeaveRestingIslandsOutAllocateNothing) {
+  for (const int threads : {1, 3}) {
+    WorldDef def = world_def(Variant::kModern, VelocityRule::kInelastic);
+    def.threads = threads;
+    World w(def);
+    build_busy_scene(w);
+    w.create_body(static_box(500.0, -1.0, 400.0, 1.0));
+    for (int c = 0; c < 600; ++c) {
+      for (int k = 0; k < 10; ++k)
+        w.create_body(dynamic_box(200.0 + c, 0.5 + k));
+    }
+    allocations_during(w, 30);
+    EXPECT_EQ(allocations_during(w, 120), 0) << threads << " threads";
+    EXPECT_GE(w.last_step_stats().resting, 6000u);
+    EXPECT_GT(w.last_step_stats().resolve_calls, 0u);
+  }
 }
 
 // Columns of boxes, half of them on a lift that goes up and down, whose slots are shuffled every

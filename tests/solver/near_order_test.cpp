@@ -128,6 +128,9 @@ TEST(NearOrder, NoResultDependsOnWhenTheNearPairsWereScanned) {
       SCOPED_TRACE(c.name + ", threads " + std::to_string(threads));
       WorldDef def;
       def.threads = threads;
+      // Which resting islands a step leaves out follows the near lists' history (islands.h; the
+      // bits do not, island_test.cpp): here every body is solved, so the contacts compare.
+      def.skip_rest = false;
       World as_it_comes(def), fresh(def);
       c.build(as_it_comes);
       c.build(fresh);

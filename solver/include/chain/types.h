@@ -136,6 +136,13 @@ struct StepStats {
   // was changed since, and dt and the squeezes remembered were the same, so the step would have
   // rebuilt the same bits. The other counts are then the last full step's; candidates is 0.
   std::uint32_t skipped = 0;
+  // Bodies of resting islands the step left out (modern, WorldDef::skip_rest): each island came
+  // out of the two steps before it where it began them, at velocity +0, and nothing came near it,
+  // so it would have rebuilt the same bits. The other counts are the solved bodies' only.
+  std::uint32_t resting = 0;
+  // 1 if the step left islands out, found that a solved body came near one (or moved one, or
+  // ran out of budget), and was solved again whole: the counts are those of the whole step.
+  std::uint32_t redone = 0;
 };
 
 // Where the last step's time went: wall time per stage of World::step, in the order the stages

@@ -64,19 +64,19 @@ void Islands::wake(std::uint32_t s) {
   push_buffer(changed_, s);
 }
 
+// Dead slots (Bodies::kill) come too: their centres and starts are NaN, so they are never at
+// rest and never near anything.
 template <class Fn>
 void Islands::each_solved(const Bodies& b, Fn&& fn) const {
   if (planned_) {
     for (const SlotRun& r : runs_) {
-      for (std::uint32_t i = r.begin; i < r.end; ++i) {
-        if (!b.dead(i)) fn(i);
-      }
+      for (std::uint32_t i = r.begin; i < r.end; ++i)
+        fn(i);
     }
     return;
   }
-  for (std::uint32_t i = 0; i < b.movable_end; ++i) {
-    if (!b.dead(i)) fn(i);
-  }
+  for (std::uint32_t i = 0; i < b.movable_end; ++i)
+    fn(i);
 }
 
 bool Islands::plan(const Bodies& b, const Broadphase& bp, Vec2 gravity, double dt, double tolerance,
@@ -204,15 +204,20 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
   const double cap = cap_of(bp);
   std::uint32_t solved = 0, resting = 0;
   each_solved(b, [&](std::uint32_t i) {
-    const bool rests = !cut && far_[i] <= cap && at_rest(b, i) && !resolver.squeezed_lately(i);
+    const bool rests =
+        !cut && far_[i] <= cap && at_rest(b, i) && !b.dead(i) && !resolver.squeezed_lately(i);
     flags_[i] = static_cast<std::uint8_t>((flags_[i] & kStillMask) | (rests ? kRests : 0));
     ++solved;
+    resting += rests ? 1 : 0;
   });
+  auto moved = [&](std::uint32_t i) {
+    if (flags_[i] & kRests) --resting;
+    flags_[i] &= static_cast<std::uint8_t>(~kRests);
+  };
   for (const std::uint32_t f : fast)
-    flags_[f] &= static_cast<std::uint8_t>(~kRests);
+    moved(f);
   for (const CrushRecord& c : crushed)
-    flags_[c.body] &= static_cast<std::uint8_t>(~kRests);
-  each_solved(b, [&](std::uint32_t i) { resting += (flags_[i] & kRests) ? 1 : 0; });
+    moved(c.body);
   auto file_still = [&](std::uint32_t i) {
     const std::uint8_t f = flags_[i];
     const std::uint8_t still = !(f & kRests) ? 0
@@ -313,10 +318,10 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
   for (const std::uint32_t j : to_wake_) {
     if (skipped_[j]) wake_island(j);
   }
-  each_solved(b, file_still);
   // An island is left out from the next step on when every body of it came out of two solved
   // steps in a row at rest and none came near a body that did not.
   each_solved(b, [&](std::uint32_t i) {
+    file_still(i);
     if (still(i) < kRested || (flags_[i] & kOpen)) flags_[find(i)] |= kOpen;
   });
   // The left-out bodies' pushes against static bodies, for touch_statics(): those of bodies woken

@@ -17,7 +17,11 @@
 //      overlapping by the same depth, and every body of it is reported crushed, once a step.
 // A world at rest skips its steps (modern, WorldDef::skip_rest): once two steps in a row left
 // every movable body where it began them at velocity +0, each step after them is the fixed point
-// it would rebuild, until the API changes a body or dt changes (StepStats::skipped).
+// it would rebuild, until the API changes a body or dt changes (StepStats::skipped). So does a
+// part of a world: an island of bodies at rest that nothing else came within a touch of is left
+// out of the steps after it, until a body that may reach it, or the API, wakes it
+// (StepStats::resting); a step that finds it guessed wrong is solved again whole
+// (StepStats::redone). The bits are those of solving every body, every step.
 //
 // Fast bodies (modern). A dynamic body is fast in a step when it moves more than half its half
 // extent along an axis; a kinematic body, more than its half extent.
@@ -125,7 +129,8 @@ struct WorldDef {
   // the world (and with each copy of it); a step allocates nothing for them.
   int threads = 1;
   // Modern: a step that would rebuild the bits it starts from is skipped (StepStats::skipped), in
-  // O(1); false solves every step. Either gives the same bits, body for body, every step.
+  // O(1), and so are the resting islands a step would rebuild (StepStats::resting); false solves
+  // every body every step. Either gives the same bits, body for body, every step.
   bool skip_rest = true;
 };
 

@@ -338,9 +338,9 @@ def summary(context, runs, subject):
     solving = context.get("chainbench_subject_solving", "")
     out = [f"**`{subject}` against every engine, with sleeping off and on.** How many times faster "
            f"`{subject}` steps, on the rows of the table below that both ran"
-           + (f" (like against like: an engine that sleeps against `{subject}`, which skips a world "
-              f"at rest; one that solves every body every step against `{solving}`, which does too)"
-              if solving else "")]
+           + (f" (like against like: an engine that sleeps against `{subject}`, which leaves "
+              f"what rests out; one that solves every body every step against `{solving}`, "
+              "which does too)" if solving else "")]
     moving_rows = [g for g in groups if g[0] in moving]
     other_rows = [g for g in groups if g[0] not in moving]
     if moving_rows and other_rows:
@@ -600,8 +600,8 @@ def compact_table(context, runs, accuracy=None, results_link="docs/results.md"):
         return cell + (" (misses)" if misses((family, size), e) else "")
 
     solving_key = solving.partition(":")[2]
-    like = (f", like against like (an engine that sleeps against `{subject}`, which skips a world at "
-            f"rest; one that solves every body every step against `{solving}`, which does too)"
+    like = (f", like against like (an engine that sleeps against `{subject}`, which leaves what rests "
+            f"out; one that solves every body every step against `{solving}`, which does too)"
             if solving else "")
     out = [f"How many times faster `{subject}` steps than each engine, with sleeping off · on{like}, "
            "on the moving scenes and the resting pyramid, each at the largest size every engine ran"

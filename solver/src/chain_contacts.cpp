@@ -66,10 +66,13 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     // it, and it is not read again until the next scan refills it).
     if (near_pairs_.size() < state_.lower_offset(n))
       resize_buffer(near_pairs_, state_.lower_offset(n));
-    // With workers: bodies [begin, end) write their contacts to `out`, at most one per entry.
+    // With workers: bodies [begin, end) write their contacts to `out`, at most one per entry. A
+    // body the step leaves out (islands.h) resolves nothing: its list is not read.
+    const std::uint8_t* const skipped = ctx.skipped;
     auto scan = [&](std::uint32_t begin, std::uint32_t end, Pair* out) {
       Pair* o = out;
       for (std::uint32_t i = begin; i < end; ++i) {
+        if (skipped != nullptr && skipped[i]) continue;
         for_each_hit(box, i, state_.lower(i), test, [&o, i](std::uint32_t j) { *o++ = {j, i}; });
       }
       return static_cast<std::uint32_t>(o - out);
@@ -106,6 +109,7 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
   std::vector<Pair>& refiled_pairs = near_pairs_;
   refiled_pairs.clear();
   for (std::uint32_t i = 0; i < bodies.size(); ++i) {
+    if (ctx.skipped != nullptr && ctx.skipped[i]) continue;
     if (bp.stale(i)) {
       bp.for_each_overlap(bodies, i, tol, [&](std::uint32_t j) {
         if ((j < i || !bp.stale(j)) && !(bodies.immovable(i) && bodies.immovable(j)))

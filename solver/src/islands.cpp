@@ -122,12 +122,24 @@ bool Islands::plan(const Bodies& b, const Broadphase& bp, Vec2 gravity, double d
   }
   changed_.clear();
   if (skipped_count_ == 0) return false;
+  // The runs of solved slots, eight flags at a time where eight in a row are alike.
   runs_.clear();
-  for (std::uint32_t i = 0; i < b.movable_end;) {
-    while (i < b.movable_end && skipped_[i])
+  const std::uint32_t n = b.movable_end;
+  auto eight = [&](std::uint32_t i) {
+    std::uint64_t w;
+    std::memcpy(&w, skipped_.data() + i, sizeof w);
+    return w;
+  };
+  constexpr std::uint64_t kAllSkipped = 0x0101010101010101ull;
+  for (std::uint32_t i = 0; i < n;) {
+    while (i + 8 <= n && eight(i) == kAllSkipped)
+      i += 8;
+    while (i < n && skipped_[i])
       ++i;
     const std::uint32_t begin = i;
-    while (i < b.movable_end && !skipped_[i])
+    while (i + 8 <= n && eight(i) == 0)
+      i += 8;
+    while (i < n && !skipped_[i])
       ++i;
     if (i > begin) push_buffer(runs_, {begin, i});
   }
@@ -203,12 +215,17 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
   // distance on the way: the reach every query below allows a body at rest.
   const double cap = cap_of(bp);
   std::uint32_t solved = 0, resting = 0;
+  // The farthest any solved body went, of those that went at most kFarShare refile distances
+  // (the others find their own neighbours below), and at least the refile distance (what a
+  // left-out body went when last solved).
+  double far_off = cap;
   each_solved(b, [&](std::uint32_t i) {
     const bool rests =
         !cut && far_[i] <= cap && at_rest(b, i) && !b.dead(i) && !resolver.squeezed_lately(i);
     flags_[i] = static_cast<std::uint8_t>((flags_[i] & kStillMask) | (rests ? kRests : 0));
     ++solved;
     resting += rests ? 1 : 0;
+    if (far_[i] > far_off && far_[i] <= kFarShare * cap) far_off = far_[i];
   });
   auto moved = [&](std::uint32_t i) {
     if (flags_[i] & kRests) --resting;
@@ -245,7 +262,7 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
   // means the step was not what it would have been, and one a moving body may reach next step
   // wakes. The pairs that may have come a touch apart are near pairs (ChainResolver::near), but
   // for bodies filed again since the scan, and bodies that went far: those are queried.
-  const double touch = kMargin + 2.0 * tolerance, far_off = 4.0 * cap;
+  const double touch = kMargin + 2.0 * tolerance;
   const bool lists = resolver.near_lists_serve(bp) && touch < 2.0 * bp.refile_distance();
   bool met = false;
   to_wake_.clear();
@@ -283,7 +300,8 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
       if (near(bi, bj, touch) || near(ahead(m), held_box(b, r), touch)) flags_[r] |= kOpen;
     }
   };
-  // The bodies that came near one, found where they are now, when each went at most far_off.
+  // The bodies that came near one, found where they are now: each went at most far_off, so its
+  // box then is within twice that of its box now.
   auto query = [&](std::uint32_t i, double slack) {
     const Box r = held_box(b, i);
     bp.for_each_in_box(b, r.x, r.y, r.hx, r.hy, slack, [&](std::uint32_t j) {
@@ -296,19 +314,23 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
   };
   each_solved(b, [&](std::uint32_t i) {
     if (!lists || bp.stale(i)) {
-      query(i, touch + cap + 2.0 * far_off);
+      query(i, touch + 2.0 * far_off);
       return;
     }
-    if (far_[i] > far_off) query(i, touch + 2.0 * cap);  // meets bodies not in its list
+    // One that went farther meets bodies not in its list: those at rest or left out matter.
+    if (far_[i] > far_off) query(i, touch + 2.0 * cap);
+    const bool ri = (flags_[i] & kRests) != 0;
     for (const std::uint32_t e : resolver.near(i)) {
       const std::uint32_t j = ChainState::entry_slot(e);
-      if (j < i || skipped_[j]) pair(i, j);  // solved pairs once, at the later body
+      // Solved pairs once, at the later body, and only where one of the two is at rest.
+      if (j >= b.movable_end) continue;
+      if (skipped_[j] || (j < i && (ri || (flags_[j] & kRests)))) pair(i, j);
     }
   });
   // A left-out body filed again since the scan is missing from its neighbours' near lists.
   if (lists) {
     bp.for_each_stale([&](std::uint32_t k) {
-      if (k < b.movable_end && skipped_[k]) query(k, touch + cap + 2.0 * far_off);
+      if (k < b.movable_end && skipped_[k]) query(k, touch + 2.0 * far_off);
     });
   }
   if (met) {

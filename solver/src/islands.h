@@ -90,6 +90,8 @@ class Islands {
   // which settle() adds twice the touch tolerance.
   static constexpr double kMargin = 1.0e-4;
   static constexpr std::uint32_t kMaxWait = 31;
+  // settle(): a body that went farther than this many refile distances queries its neighbours.
+  static constexpr double kFarShare = 4.0;
   static constexpr std::uint8_t kRested = 2;  // still() of a body two solved steps at rest
 
   template <class Fn>

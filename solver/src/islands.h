@@ -20,6 +20,8 @@
 // on its way (its integrated move, grown) wakes that island; after it, a solved body that came
 // within the margin of a left-out one, moved one, or a cut step, means the guess was wrong: the
 // step is undone and solved whole (StepStats::redone), which gives the same bits as ever.
+// Islands are left out only where that pays: where what they would resolve outweighs the checks
+// (settle()); which ones are left out never changes a result.
 #pragma once
 
 #include "bodies.h"
@@ -71,6 +73,9 @@ class Islands {
   // Off, no island is woken ahead of a body that may reach it: every meeting is found after its
   // step, which is solved again (for tests of that path).
   void guess(bool on) { guess_ = on; }
+  // Off, islands are left out even where what they would resolve does not pay for the checks
+  // (settle()): for tests, which must leave islands out to prove anything.
+  void weigh(bool on) { weigh_ = on; }
 
   // After a step that left islands out, before settle(): adds the left-out bodies' pushes of
   // their last solve to the static bodies' touching flags, as solving them would have.
@@ -130,6 +135,7 @@ class Islands {
   std::vector<std::uint32_t> spent_;  // per slot: pair resolutions its chains took when last solved
   std::vector<Point> saved_v_;        // the solved bodies' velocities before the step, run order
   std::vector<SlotRun> runs_;
+  std::vector<std::uint32_t> solved_;   // the slots of runs_, one by one
   std::vector<std::uint32_t> changed_;  // bodies wake() saw since the last plan()
   std::vector<std::uint32_t> to_wake_;  // settle(): left-out bodies a moving one may reach next
   Reach reach_;
@@ -141,9 +147,11 @@ class Islands {
   double dt_ = 0.0;       // the dt the left-out islands rested at
   bool planned_ = false;  // this step leaves some out
   bool guess_ = true;
+  bool weigh_ = true;
   bool tracking_ = true;
   bool counted_last_ = false;  // the last step counted the still steps
   std::uint32_t backoff_ = 0, wait_ = 0;
+  std::uint32_t unpaid_ = 0;  // settle(): the wait the last island search that did not pay set
 };
 
 }  // namespace chain::detail

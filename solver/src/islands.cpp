@@ -29,6 +29,7 @@ void Islands::reset(std::uint32_t slots) {
   std::iota(next_.begin(), next_.end(), 0u);
   runs_.clear();
   solved_.clear();
+  run_count_ = solved_count_ = 0;
   saved_v_.clear();
   kept_.clear();
   changed_.clear();
@@ -70,7 +71,7 @@ void Islands::wake(std::uint32_t s) {
 template <class Fn>
 void Islands::each_solved(const Bodies& b, Fn&& fn) const {
   if (planned_) {
-    for (const std::uint32_t i : solved_)
+    for (const std::uint32_t i : solved())
       fn(i);
     return;
   }
@@ -121,8 +122,9 @@ bool Islands::plan(const Bodies& b, const Broadphase& bp, Vec2 gravity, double d
   }
   changed_.clear();
   if (skipped_count_ == 0) return false;
-  // The runs of solved slots, eight flags at a time where eight in a row are alike.
-  runs_.clear();
+  // The solved slots one by one, then their runs, with no branch on each slot's flag: a loop
+  // that stops where the flags change mispredicts at every change, and they change thousands of
+  // times a step where bodies rest among moving ones. Eight flags at once where all are left out.
   const std::uint32_t n = b.movable_end;
   auto eight = [&](std::uint32_t i) {
     std::uint64_t w;
@@ -130,37 +132,39 @@ bool Islands::plan(const Bodies& b, const Broadphase& bp, Vec2 gravity, double d
     return w;
   };
   constexpr std::uint64_t kAllSkipped = 0x0101010101010101ull;
-  for (std::uint32_t i = 0; i < n;) {
-    while (i + 8 <= n && eight(i) == kAllSkipped)
-      i += 8;
-    while (i < n && skipped_[i])
-      ++i;
-    const std::uint32_t begin = i;
-    while (i + 8 <= n && eight(i) == 0)
-      i += 8;
-    while (i < n && !skipped_[i])
-      ++i;
-    if (i > begin) push_buffer(runs_, {begin, i});
-  }
-  // The same slots one by one, for the passes that visit each: a loop over short runs mispredicts
-  // its exit at every run. Written eight at a time, past a run's end into the room after it.
-  resize_buffer(solved_, n + 8);
-  std::uint32_t k = 0;
-  for (const SlotRun& r : runs_) {
-    for (std::uint32_t i = r.begin; i < r.end; i += 8) {
-      for (std::uint32_t t = 0; t < 8; ++t)
-        solved_[k + (i - r.begin) + t] = i + t;
+  if (solved_.size() < n) resize_buffer(solved_, n);  // sized once: resize() would write n zeros
+  std::uint32_t k = 0, i = 0;
+  for (; i + 8 <= n; i += 8) {
+    if (eight(i) == kAllSkipped) continue;
+    for (std::uint32_t t = 0; t < 8; ++t) {
+      solved_[k] = i + t;  // kept when the slot is solved
+      k += skipped_[i + t] ^ 1u;
     }
-    k += r.end - r.begin;
   }
-  solved_.resize(k);
+  for (; i < n; ++i) {
+    solved_[k] = i;
+    k += skipped_[i] ^ 1u;
+  }
+  solved_count_ = k;
+  if (runs_.size() < n) resize_buffer(runs_, n);
+  std::uint32_t r = 0;
+  if (k > 0) runs_[r++] = {solved_[0], solved_[0] + 1};
+  for (std::uint32_t q = 1; q < k; ++q) {
+    const std::uint32_t slot = solved_[q];
+    // All ones where the slot begins a run: the begin is taken from it by a mask, not a branch.
+    const std::uint32_t fresh = 0u - static_cast<std::uint32_t>(slot != runs_[r - 1].end);
+    r += fresh & 1u;
+    runs_[r - 1].begin = (slot & fresh) | (runs_[r - 1].begin & ~fresh);
+    runs_[r - 1].end = slot + 1;
+  }
+  run_count_ = r;
   planned_ = true;
   return true;
 }
 
 void Islands::save(const Bodies& b) {
-  resize_buffer(saved_v_, solved_.size());
-  for (std::size_t k = 0; k < solved_.size(); ++k)
+  resize_buffer(saved_v_, solved_count_);
+  for (std::size_t k = 0; k < solved_count_; ++k)
     saved_v_[k] = {b.vx[solved_[k]], b.vy[solved_[k]]};
 }
 
@@ -174,7 +178,7 @@ void Islands::undo(Bodies& b) {
       next_[i] = i;
     }
   }
-  for (std::size_t k = 0; k < solved_.size(); ++k) {
+  for (std::size_t k = 0; k < solved_count_; ++k) {
     b.vx[solved_[k]] = saved_v_[k].x;
     b.vy[solved_[k]] = saved_v_[k].y;
   }
@@ -328,9 +332,11 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
     const bool ri = (flags_[i] & kRests) != 0;
     for (const std::uint32_t e : resolver.near(i)) {
       const std::uint32_t j = ChainState::entry_slot(e);
-      // Solved pairs once, at the later body, and only where one of the two is at rest.
-      if (j >= b.movable_end) continue;
-      if (skipped_[j] || (j < i && (ri || (flags_[j] & kRests)))) pair(i, j);
+      // Solved pairs once, at the later body, and only where one of the two is at rest. Static
+      // bodies (slots from movable_end) are neither left out nor at rest, and come after i: the
+      // test, in bit operations, is one branch an entry.
+      const unsigned later = j < i ? 1u : 0u, rj = (flags_[j] & kRests) != 0 ? 1u : 0u;
+      if ((skipped_[j] | (later & (static_cast<unsigned>(ri) | rj))) != 0) pair(i, j);
     }
   });
   // A left-out body filed again since the scan is missing from its neighbours' near lists.

@@ -54,7 +54,7 @@ class Islands {
   // before it moves a body.
   bool plan(const Bodies& b, const Broadphase& bp, Vec2 gravity, double dt, double tolerance,
             bool whole);
-  std::span<const SlotRun> runs() const { return runs_; }
+  std::span<const SlotRun> runs() const { return {runs_.data(), run_count_}; }
   const std::uint8_t* skipped() const { return skipped_.data(); }
   std::uint64_t skipped_spend() const { return skipped_spend_; }
   std::uint32_t skipped_bodies() const { return skipped_count_; }
@@ -134,8 +134,10 @@ class Islands {
   std::vector<std::uint32_t> next_;
   std::vector<std::uint32_t> spent_;  // per slot: pair resolutions its chains took when last solved
   std::vector<Point> saved_v_;        // the solved bodies' velocities before the step, run order
-  std::vector<SlotRun> runs_;
-  std::vector<std::uint32_t> solved_;   // the slots of runs_, one by one
+  std::vector<SlotRun> runs_;         // the first run_count_ hold this step's runs
+  std::vector<std::uint32_t> solved_;  // the first solved_count_: the slots of the runs, one by one
+  std::uint32_t run_count_ = 0, solved_count_ = 0;
+  std::span<const std::uint32_t> solved() const { return {solved_.data(), solved_count_}; }
   std::vector<std::uint32_t> changed_;  // bodies wake() saw since the last plan()
   std::vector<std::uint32_t> to_wake_;  // settle(): left-out bodies a moving one may reach next
   Reach reach_;

@@ -34,7 +34,8 @@ class ChainState {
   // Appends to `out` every body that now overlaps `around`, in slot order: from its near pairs
   // and the bodies the broadphase filed again since they were taken, or, when `around` itself was
   // filed again, from the grid; the same list whichever way. True when one of them is immovable.
-  // Inline: every body a chain reaches takes it.
+  // What it met is charged to the budget (StepContext::charge_met). Inline: every body a chain
+  // reaches takes it.
   template <class Out>
   bool gather_overlaps(StepContext& ctx, std::uint32_t around, Out& out) const {
     return gather_overlaps(ctx, around, out, OverlapTest(ctx.def.touch_tolerance));
@@ -43,8 +44,12 @@ class ChainState {
   template <class Out>
   bool gather_overlaps(StepContext& ctx, std::uint32_t around, Out& out,
                        const OverlapTest& test) const {
-    if (!ctx.broadphase.near_pairs_hold() && ctx.broadphase.near_stale(around)) [[unlikely]]
-      return gather_overlaps_refiled(ctx, around, out);
+    const std::size_t before = out.size();
+    if (!ctx.broadphase.near_pairs_hold() && ctx.broadphase.near_stale(around)) [[unlikely]] {
+      const bool immovable = gather_overlaps_refiled(ctx, around, out);
+      ctx.charge_met(around, out.size() - before);
+      return immovable;
+    }
     // Every body that moved less than the broadphase's refile distance since the near pairs were
     // taken closed by less than the slack with any other such body: every one of them that
     // overlaps `around` now is among its near pairs. A body filed again since was filed too far
@@ -62,6 +67,7 @@ class ChainState {
       }
       immovable |= j >= dynamic_end;
     });
+    ctx.charge_met(around, out.size() - before);
     return immovable;
   }
   // gather_overlaps once some body was filed again since the near pairs were taken.

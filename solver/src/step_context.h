@@ -13,7 +13,9 @@
 #include <chain/types.h>
 #include <chain/world.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -30,6 +32,13 @@ inline constexpr int kAnyAxis = 2;
 inline constexpr double kPushOutShare = 0.9;
 // The share of a body's half extent it may move unguarded (StepContext::guarded).
 inline constexpr double kFreeMoveShare = 1.0 - kPushOutShare;
+// A query made for a resolution that meets this many bodies costs the budget one pair resolution
+// more for each such many (StepContext::charge_met). The budget bounds the resolutions, but in a
+// pile created all in one place each one meets every body of the pile, and a step would cost the
+// budget times the pile's size; no query of a world whose bodies do not pile into each other
+// meets so many.
+// Such a pile then comes apart over more steps, each bounded (tests/solver/chain_work_test.cpp).
+inline constexpr std::size_t kMetPerResolution = 32;
 
 struct CrushRecord {
   std::uint32_t body, anchor, blocker;
@@ -64,6 +73,16 @@ struct StepContext {
   }
 
   double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
+
+  // Takes what a query made for body i that met `met` bodies costs from the budget: nothing below
+  // kMetPerResolution; spent by i's island, as a resolution is (islands.h).
+  void charge_met(std::uint32_t i, std::size_t met) {
+    if (met < kMetPerResolution) [[likely]]
+      return;
+    const std::uint64_t units = std::min<std::uint64_t>(budget, met / kMetPerResolution);
+    budget -= units;
+    if (spent != nullptr) spent[i] += static_cast<std::uint32_t>(units);
+  }
 
   // Moves body i by d along axis, or less when guarded (limit_move); returns how far it moved.
   // Under the zero rule, a velocity component that points against the move stops, as the 2014
@@ -116,9 +135,9 @@ struct StepContext {
   // when the step began stops it only before it would come out beyond: push-out takes i back out
   // through the face it came in by at any depth (entry_face.h). `follower` (if any) is about to
   // move after i by as much (a chain's follow-back) and does not stop it. Returns the move
-  // allowed, of d's sign and at most |d|.
+  // allowed, of d's sign and at most |d|; the bodies its query met are charged (charge_met).
   double limit_move(std::uint32_t i, int axis, double d, std::uint32_t follower, Passes passes,
-                    const void* arg) const;
+                    const void* arg);
 
  private:
   // A move of body i shorter than kFreeMoveShare of its own half extent along the move cannot

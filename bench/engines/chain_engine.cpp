@@ -250,8 +250,8 @@ EngineDef register_chain() {
             whole_key("threads", 1, 1, chain::kMaxThreads,
                       "threads a step runs on, the caller's included (same bits for any count)"),
             whole_key("skip_rest", 1, 0, 1,
-                      "modern: skip a step that would rebuild the bits it starts from (same bits "
-                      "either way)")};
+                      "modern: skip a step, or the resting islands of one, that would rebuild "
+                      "the bits it starts from (same bits either way)")};
   e.capabilities = [](const EngineSpec& spec) {
     Capabilities c;
     c.kinematic = true;

@@ -229,12 +229,14 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
   // (the others find their own neighbours below), and at least the refile distance (what a
   // left-out body went when last solved).
   double far_off = cap;
+  std::uint64_t rest_spend = 0;  // what the bodies at rest resolved this step
   each_solved(b, [&](std::uint32_t i) {
     const bool rests =
         !cut && far_[i] <= cap && at_rest(b, i) && !b.dead(i) && !resolver.squeezed_lately(i);
     flags_[i] = static_cast<std::uint8_t>((flags_[i] & kStillMask) | (rests ? kRests : 0));
     ++solved;
     resting += rests ? 1 : 0;
+    rest_spend += rests ? spent_[i] : 0;
     if (far_[i] > far_off && far_[i] <= kFarShare * cap) far_off = far_[i];
   });
   auto moved = [&](std::uint32_t i) {
@@ -266,6 +268,30 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
     return true;
   }
   backoff_ = 0;
+  if (!planned_ && !counted_last_) {
+    // The first step looked at after a wait: no body has come out of two looked-at steps at rest
+    // yet, so no island can form; only the still counts are filed.
+    each_solved(b, [&](std::uint32_t i) {
+      file_still(i);
+      spent_[i] = 0;
+    });
+    counted_last_ = true;
+    dt_ = dt;
+    return true;
+  }
+  if (weigh_ && !planned_ && 2 * rest_spend < static_cast<std::uint64_t>(solved - resting)) {
+    // Were every body at rest left out, what they resolved would still not pay (below): no
+    // search, and islands are looked for later, as when one does not pay.
+    each_solved(b, [&](std::uint32_t i) {
+      file_still(i);
+      spent_[i] = 0;
+    });
+    unpaid_ = std::min(2 * unpaid_ + 1, kMaxWait);
+    wait_ = unpaid_;
+    counted_last_ = true;
+    dt_ = dt;
+    return true;
+  }
   // Islands: the bodies at rest whose reach came within a touch of each other's, joined (next_ as
   // the union-find parent: solved bodies are in no island). One that a moving body came near
   // enough to reach next step is open; a left-out body that a solved one came within a touch of

@@ -20,8 +20,8 @@
 // on its way (its integrated move, grown) wakes that island; after it, a solved body that came
 // within the margin of a left-out one, moved one, or a cut step, means the guess was wrong: the
 // step is undone and solved whole (StepStats::redone), which gives the same bits as ever.
-// Islands are left out only where that pays: where what they would resolve outweighs the checks
-// (settle()); which ones are left out never changes a result.
+// Islands are left out only where that pays: where what all of them together would resolve
+// outweighs the checks (settle()); which ones are left out never changes a result.
 #pragma once
 
 #include "bodies.h"
@@ -63,8 +63,9 @@ class Islands {
   // began (the solved ones to their saved velocities) and none is left out.
   void undo(Bodies& b);
 
-  // Whether this step keeps where bodies went (a world with nothing at rest does not look, and
-  // looks again after 1, 3, 7 ... up to 31 steps, as rest.h does).
+  // Whether this step keeps where bodies went (a world with too little at rest, or whose islands
+  // did not pay, does not look, and looks again after 1, 3, 7 ... up to 31 steps, as rest.h
+  // does).
   bool tracking() const { return tracking_; }
   // After integration, when tracking(): every solved body's reach starts at its start and
   // integrated centre.

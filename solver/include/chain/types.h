@@ -149,7 +149,8 @@ struct StepStats {
 // run, milliseconds (the part Box2D's b2Profile plays). Measured only while the world measures
 // them (World::set_profiling); all zero otherwise.
 struct StepProfile {
-  double prepare = 0.0;     // bodies created or destroyed since the last step filed; flags cleared
+  double prepare = 0.0;     // bodies created or destroyed since the last step filed; flags
+                            // cleared; the resting islands to leave out found (skip_rest)
   double integrate = 0.0;   // drives, gravity and motion
   double continuous = 0.0;  // continuous collision: fast bodies swept along their paths (modern)
   double contacts = 0.0;    // overlapping pairs gathered and put in order, every pass (modern)
@@ -157,7 +158,9 @@ struct StepProfile {
                             // its resolution, which gathers as it goes)
   double velocity = 0.0;    // the velocity rule
   double friction = 0.0;    // friction (modern, rough bodies only)
-  double layout = 0.0;      // the step's report filed; bodies renumbered in reach order (modern)
+  double layout = 0.0;      // the check after a step that left islands out, and the islands
+                            // filed for the next (skip_rest); the step's report filed; bodies
+                            // renumbered in reach order (modern); a step skipped whole
   double total = 0.0;       // the whole step: the stages and the little between them
 };
 

@@ -103,16 +103,8 @@ bool Islands::plan(const Bodies& b, const Broadphase& bp, Vec2 gravity, double d
   const double touch = kMargin + 2.0 * tolerance;
   for (const std::uint32_t i : changed_) {
     if (!guess_ || i >= b.movable_end || skipped_[i] || b.dead(i)) continue;
-    double vx = b.vx[i], vy = b.vy[i];
-    if (const std::uint8_t held = b.driven[i]; held != 0) {
-      if (held & kDriveX) vx = b.drive_x[i];
-      if (held & kDriveY) vy = b.drive_y[i];
-    }
-    if (i < b.dynamic_end) {
-      vx += gravity.x * b.gravity_scale[i] * dt;
-      vy += gravity.y * b.gravity_scale[i] * dt;
-    }
-    const double dx = vx * dt, dy = vy * dt, move = std::max(std::abs(dx), std::abs(dy));
+    const Vec2 v = integrated_velocity(b, i, gravity, dt);
+    const double dx = v.x * dt, dy = v.y * dt, move = std::max(std::abs(dx), std::abs(dy));
     const Box way{b.x(i) + 0.5 * dx, b.y(i) + 0.5 * dy, b.hx(i) + 0.5 * std::abs(dx),
                   b.hy(i) + 0.5 * std::abs(dy)};
     const double pad = touch + cap_of(bp) + move;
@@ -255,43 +247,31 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
                                    : 1;
     flags_[i] = static_cast<std::uint8_t>((f & ~kStillMask) | still);
   };
-  if (!planned_ && (resting == 0 || 4 * resting < solved)) {
-    // Too little at rest to look for islands: look again later, less often the longer it moves.
+  // A step that searches for no island files only the still counts, and, after `waited`
+  // (non-null) doubles, looks again that many steps later.
+  auto no_search = [&](std::uint32_t* waited) {
     each_solved(b, [&](std::uint32_t i) {
       file_still(i);
       spent_[i] = 0;
     });
-    backoff_ = std::min(2 * backoff_ + 1, kMaxWait);
-    wait_ = backoff_;
+    if (waited != nullptr) {
+      *waited = std::min(2 * *waited + 1, kMaxWait);
+      wait_ = *waited;
+    }
     counted_last_ = true;
     dt_ = dt;
     return true;
-  }
+  };
+  // Too little at rest to look for islands: look again later, less often the longer it moves.
+  if (!planned_ && (resting == 0 || 4 * resting < solved)) return no_search(&backoff_);
   backoff_ = 0;
-  if (!planned_ && !counted_last_) {
-    // The first step looked at after a wait: no body has come out of two looked-at steps at rest
-    // yet, so no island can form; only the still counts are filed.
-    each_solved(b, [&](std::uint32_t i) {
-      file_still(i);
-      spent_[i] = 0;
-    });
-    counted_last_ = true;
-    dt_ = dt;
-    return true;
-  }
-  if (weigh_ && !planned_ && 2 * rest_spend < static_cast<std::uint64_t>(solved - resting)) {
-    // Were every body at rest left out, what they resolved would still not pay (below): no
-    // search, and islands are looked for later, as when one does not pay.
-    each_solved(b, [&](std::uint32_t i) {
-      file_still(i);
-      spent_[i] = 0;
-    });
-    unpaid_ = std::min(2 * unpaid_ + 1, kMaxWait);
-    wait_ = unpaid_;
-    counted_last_ = true;
-    dt_ = dt;
-    return true;
-  }
+  // The first step looked at after a wait: no body has come out of two looked-at steps at rest
+  // yet, so no island can form.
+  if (!planned_ && !counted_last_) return no_search(nullptr);
+  // Were every body at rest left out, what they resolved would still not pay (below): islands
+  // are looked for later, as when they do not pay.
+  if (weigh_ && !planned_ && 2 * rest_spend < static_cast<std::uint64_t>(solved - resting))
+    return no_search(&unpaid_);
   // Islands: the bodies at rest whose reach came within a touch of each other's, joined (next_ as
   // the union-find parent: solved bodies are in no island). One that a moving body came near
   // enough to reach next step is open; a left-out body that a solved one came within a touch of

@@ -29,10 +29,9 @@ namespace chain::detail {
 inline constexpr double kFastDynamicShare = 0.5;
 inline constexpr double kFastKinematicShare = 1.0;
 
-// How far integrate() would move body i along its farther axis this step: for a body a step
-// leaves out (islands.h), what the step that solves it would have moved it, in the same
+// The velocity integrate() would give body i this step (drives, then gravity), in the same
 // operations.
-inline double integrated_move(const Bodies& b, std::uint32_t i, Vec2 gravity, double dt) {
+inline Vec2 integrated_velocity(const Bodies& b, std::uint32_t i, Vec2 gravity, double dt) {
   double vx = b.vx[i], vy = b.vy[i];
   if (const std::uint8_t held = b.driven[i]; held != 0) {
     if (held & kDriveX) vx = b.drive_x[i];
@@ -42,8 +41,16 @@ inline double integrated_move(const Bodies& b, std::uint32_t i, Vec2 gravity, do
     vx += gravity.x * b.gravity_scale[i] * dt;
     vy += gravity.y * b.gravity_scale[i] * dt;
   }
+  return {vx, vy};
+}
+
+// How far integrate() would move body i along its farther axis this step: for a body a step
+// leaves out (islands.h), what the step that solves it would have moved it, in the same
+// operations.
+inline double integrated_move(const Bodies& b, std::uint32_t i, Vec2 gravity, double dt) {
+  const Vec2 v = integrated_velocity(b, i, gravity, dt);
   const double x0 = b.box[i].center[0], y0 = b.box[i].center[1];
-  const double x1 = x0 + vx * dt, y1 = y0 + vy * dt;
+  const double x1 = x0 + v.x * dt, y1 = y0 + v.y * dt;
   return std::max(std::abs(x1 - x0), std::abs(y1 - y0));
 }
 

@@ -133,7 +133,7 @@ class Islands {
   // Per slot: the next body of its island, around (itself: in none). During settle() the solved
   // bodies, in none, use it as their union-find parent.
   std::vector<std::uint32_t> next_;
-  std::vector<std::uint32_t> spent_;  // per slot: pair resolutions its chains took when last solved
+  std::vector<std::uint32_t> spent_;  // per slot: budget its chains took when last solved
   std::vector<Point> saved_v_;        // the solved bodies' velocities before the step, run order
   std::vector<SlotRun> runs_;         // the first run_count_ hold this step's runs
   std::vector<std::uint32_t> solved_;  // the first solved_count_: the slots of the runs, one by one

@@ -7,7 +7,7 @@
 namespace chain::detail {
 
 double StepContext::limit_move(std::uint32_t i, int axis, double d, std::uint32_t follower,
-                               Passes passes, const void* arg) {
+                               Passes passes, const void* arg) const {
   const int k = axis, v = 1 - axis;
   const double sign = d > 0.0 ? 1.0 : -1.0;
   const double from = bodies.pos(k, i);
@@ -18,11 +18,9 @@ double StepContext::limit_move(std::uint32_t i, int axis, double d, std::uint32_
   half[k] = bodies.half(k, i) + 0.5 * std::abs(d);
   centre[v] = bodies.pos(v, i);
   half[v] = bodies.half(v, i);
-  std::size_t met = 0;
   broadphase.for_each_in_box(
       bodies, centre[0], centre[1], half[0], half[1], 0.0, [&](std::uint32_t c) {
         if (c == i || c == follower || (passes && passes(arg, c))) return;
-        ++met;
         const double ahead = sign * (bodies.pos(k, c) - from);
         if (ahead <= 0.0) return;  // behind: i moves away from its centre
         const double hi = bodies.half(v, i), hc = bodies.half(v, c);
@@ -43,7 +41,6 @@ double StepContext::limit_move(std::uint32_t i, int axis, double d, std::uint32_
         // Depth in c after travelling t: full - (ahead - t).
         allowed = std::min(allowed, std::max(0.0, ahead - (1.0 - kPushOutShare) * full));
       });
-  charge_met(i, met);
   return sign * allowed;
 }
 

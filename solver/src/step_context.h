@@ -32,12 +32,14 @@ inline constexpr int kAnyAxis = 2;
 inline constexpr double kPushOutShare = 0.9;
 // The share of a body's half extent it may move unguarded (StepContext::guarded).
 inline constexpr double kFreeMoveShare = 1.0 - kPushOutShare;
-// A query made for a resolution that meets this many bodies costs the budget one pair resolution
-// more for each such many (StepContext::charge_met). The budget bounds the resolutions, but in a
-// pile created all in one place each one meets every body of the pile, and a step would cost the
-// budget times the pile's size; no query of a world whose bodies do not pile into each other
-// meets so many.
+// A gathering of the bodies overlapping one (ChainState::gather_overlaps: for a resolution, a
+// pass's contacts, a crush) that finds this many costs the budget one pair resolution more for
+// each such many (StepContext::charge_met). The budget bounds the resolutions, but in a pile
+// created all in one place each one meets every body of the pile, and a step would cost the
+// budget times the pile's size; only a body carrying or overlapping this many others is charged.
 // Such a pile then comes apart over more steps, each bounded (tests/solver/chain_work_test.cpp).
+// The move guard's queries are not charged: a guarded move follows a gathering, so the charged
+// budget bounds them too.
 inline constexpr std::size_t kMetPerResolution = 32;
 
 struct CrushRecord {
@@ -74,12 +76,18 @@ struct StepContext {
 
   double* vel(int axis) { return axis == 0 ? bodies.vx.data() : bodies.vy.data(); }
 
-  // Takes what a query made for body i that met `met` bodies costs from the budget: nothing below
-  // kMetPerResolution; spent by i's island, as a resolution is (islands.h).
+  // Takes what a gathering for body i that found `met` bodies costs from the budget: nothing
+  // below kMetPerResolution; spent by i's island, as a resolution is (islands.h). A charge the
+  // budget cannot meet cuts the step as a resolution it cannot meet does (a budget hit), so that
+  // a step is cut exactly when all it asks exceeds the budget, in whatever order it asks.
   void charge_met(std::uint32_t i, std::size_t met) {
     if (met < kMetPerResolution) [[likely]]
       return;
-    const std::uint64_t units = std::min<std::uint64_t>(budget, met / kMetPerResolution);
+    std::uint64_t units = met / kMetPerResolution;
+    if (units > budget) {
+      units = budget;
+      ++stats.budget_hits;
+    }
     budget -= units;
     if (spent != nullptr) spent[i] += static_cast<std::uint32_t>(units);
   }
@@ -135,9 +143,9 @@ struct StepContext {
   // when the step began stops it only before it would come out beyond: push-out takes i back out
   // through the face it came in by at any depth (entry_face.h). `follower` (if any) is about to
   // move after i by as much (a chain's follow-back) and does not stop it. Returns the move
-  // allowed, of d's sign and at most |d|; the bodies its query met are charged (charge_met).
+  // allowed, of d's sign and at most |d|.
   double limit_move(std::uint32_t i, int axis, double d, std::uint32_t follower, Passes passes,
-                    const void* arg);
+                    const void* arg) const;
 
  private:
   // A move of body i shorter than kFreeMoveShare of its own half extent along the move cannot

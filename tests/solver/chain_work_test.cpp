@@ -202,12 +202,12 @@ TEST(ChainWork, APileInOnePlaceSearchesInProportionToItsPairs) {
       w.step(kDt);
       const StepStats& st = w.last_step_stats();
       const double pairs = static_cast<double>(st.contacts) + n;
-      EXPECT_LT(st.candidates, 40.0 * pairs) << "n " << n << " step " << step;
+      EXPECT_LT(st.candidates, 100.0 * pairs) << "n " << n << " step " << step;
     }
     if (n > 200) continue;
     // Fewer resolutions a step, but the pile still comes apart, over more steps: 200 boxes
-    // within two seconds (36 steps; 800 take 555, where every step could resolve everything it
-    // met), no step then cut, each box touching a few others.
+    // within two seconds (27 steps; 800 take 454), no step then cut, each box touching a few
+    // others.
     for (int step = 3; step < 120; ++step)
       w.step(kDt);
     EXPECT_EQ(w.last_step_stats().budget_hits, 0u) << "n " << n;

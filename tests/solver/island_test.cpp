@@ -145,6 +145,16 @@ std::vector<Case> cases() {
            }};
   cut.def.budget_per_body = 1;
   list.push_back(cut);
+  // Boxes created all at one point beside piles at rest, on a small budget: gatherings that meet
+  // the whole new pile are charged to it (StepContext::charge_met), and steps run out of it.
+  Case pile{"pile", rain, 260, [](World& w, int k) {
+              if (k == 150) {
+                for (int i = 0; i < 48; ++i)
+                  w.create_body(dynamic_box(25.0, 3.0, 0.3));
+              }
+            }};
+  pile.def.budget_per_body = 2;
+  list.push_back(pile);
   // A change of dt: the islands resting at the old one are solved again.
   list.push_back({"dt", rain, 300, [](World&, int) {}});
   return list;

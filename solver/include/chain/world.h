@@ -112,9 +112,9 @@ struct WorldDef {
   int max_passes = 4;
   // Both variants: pair resolutions allowed per step, per body (plus a fixed 1024), in
   // [1, 1000000]. When a step runs out, the chains still open are cut, counted in
-  // StepStats::budget_hits. In the modern variant a resolution whose query meets 32 bodies or
-  // more costs one more for every 32 (boxes piled into each other, as created all in one place):
-  // such a pile comes apart over more steps, each of bounded work.
+  // StepStats::budget_hits. In the modern variant a gathering of the bodies overlapping one that
+  // finds 32 or more costs one more for every 32 (boxes piled into each other, as created all in
+  // one place): such a pile comes apart over more steps, each of bounded work.
   int budget_per_body = 64;
   // seed2014 resolves recursively, as the 2014 engine did: deeper chains are cut and counted. In
   // [1, 16384] (each level is a native stack frame).

@@ -633,7 +633,8 @@ def compact_table(context, runs, accuracy=None, results_link="docs/results.md"):
                    f"{row_label(recipes, f, sz)} {faster:.1f}x faster "
                    f"({times((ms(runs[(f, e, sz)]), ms(runs[(f, m, sz)])))} per step).")
     else:
-        out.append(f"No engine steps any row of the full tables faster than `{subject}`.")
+        out.append("No engine of this table steps any of its rows in the full tables faster than "
+                   f"`{subject}`.")
     if notes:
         out[-1] += " " + " ".join(notes)
     out += ["", measured(context)]

@@ -366,7 +366,8 @@ class CompactTableTest(unittest.TestCase):
     def test_no_engine_faster_anywhere_is_said(self):
         runs = {k: v for k, v in COMPACT_RUNS.items() if k[1] != "ref:sleep=1"}
         text = bench_table.compact_table(COMPACT_CONTEXT, runs)
-        self.assertIn("No engine steps any row of the full tables faster than `fast`.", text)
+        self.assertIn("No engine of this table steps any of its rows in the full tables faster than "
+                      "`fast`.", text)
         self.assertIn("| vs `ref`† |", text)
 
 

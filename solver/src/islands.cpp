@@ -394,9 +394,10 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
   });
   // Leaving islands out pays for the checks above (about a pass over every solved body's near
   // list) only where what it leaves out would resolve something: an island that touches nothing
-  // saves its integration alone. Where the left-out bodies would resolve fewer pairs than half
-  // the bodies solved, every island is solved from the next step on, and islands are looked for
-  // again later, less often the longer leaving them out does not pay.
+  // saves its integration alone. Where the left-out bodies took less of the budget when last
+  // solved (spent_: pair resolutions and charges) than half the bodies solved, every island is
+  // solved from the next step on, and islands are looked for again later, less often the longer
+  // leaving them out does not pay.
   if (weigh_ && skipped_count_ > 0 &&
       2 * skipped_spend_ < static_cast<std::uint64_t>(b.movable_end - skipped_count_)) {
     for (std::uint32_t i = 0; i < b.movable_end; ++i) {

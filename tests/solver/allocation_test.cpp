@@ -155,6 +155,15 @@ TEST(Allocation, WarmedUpStepsAllocateNothing) {
   }
 }
 
+// A wall of 6,000 boxes at rest on its own floor, beside the busy scene.
+void add_resting_wall(World& w) {
+  w.create_body(static_box(500.0, -1.0, 400.0, 1.0));
+  for (int c = 0; c < 600; ++c) {
+    for (int k = 0; k < 10; ++k)
+      w.create_body(dynamic_box(200.0 + c, 0.5 + k));
+  }
+}
+
 // With worker threads, the blocks of bodies they take and their notes live in buffers sized
 // once: a busy scene with a wall of 6,000 boxes beside it (several blocks) allocates nothing.
 TEST(Allocation, ThreadedStepsAllocateNothing) {
@@ -163,11 +172,7 @@ TEST(Allocation, ThreadedStepsAllocateNothing) {
   def.skip_rest = false;  // the wall rests: left out, it would run no block (next test)
   World w(def);
   build_busy_scene(w);
-  w.create_body(static_box(500.0, -1.0, 400.0, 1.0));
-  for (int c = 0; c < 600; ++c) {
-    for (int k = 0; k < 10; ++k)
-      w.create_body(dynamic_box(200.0 + c, 0.5 + k));
-  }
+  add_resting_wall(w);
   allocations_during(w, 30);
   EXPECT_EQ(allocations_during(w, 120), 0);
   EXPECT_GT(w.last_step_stats().resolve_calls, 6000u);
@@ -181,11 +186,7 @@ TEST(Allocation, StepsThatLeaveRestingIslandsOutAllocateNothing) {
     def.threads = threads;
     World w(def);
     build_busy_scene(w);
-    w.create_body(static_box(500.0, -1.0, 400.0, 1.0));
-    for (int c = 0; c < 600; ++c) {
-      for (int k = 0; k < 10; ++k)
-        w.create_body(dynamic_box(200.0 + c, 0.5 + k));
-    }
+    add_resting_wall(w);
     allocations_during(w, 30);
     EXPECT_EQ(allocations_during(w, 120), 0) << threads << " threads";
     EXPECT_GE(w.last_step_stats().resting, 6000u);

@@ -270,8 +270,7 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
   if (!planned_ && !counted_last_) return no_search(nullptr);
   // Were every body at rest left out, what they resolved would still not pay (below): islands
   // are looked for later, as when they do not pay.
-  if (weigh_ && !planned_ && 2 * rest_spend < static_cast<std::uint64_t>(solved - resting))
-    return no_search(&unpaid_);
+  if (weigh_ && !planned_ && !pays(rest_spend, solved - resting)) return no_search(&unpaid_);
   // Islands: the bodies at rest whose reach came within a touch of each other's, joined (next_ as
   // the union-find parent: solved bodies are in no island). One that a moving body came near
   // enough to reach next step is open; a left-out body that a solved one came within a touch of
@@ -398,8 +397,7 @@ bool Islands::settle(const Bodies& b, const Broadphase& bp, const ChainResolver&
   // solved (spent_: pair resolutions and charges) than half the bodies solved, every island is
   // solved from the next step on, and islands are looked for again later, less often the longer
   // leaving them out does not pay.
-  if (weigh_ && skipped_count_ > 0 &&
-      2 * skipped_spend_ < static_cast<std::uint64_t>(b.movable_end - skipped_count_)) {
+  if (weigh_ && skipped_count_ > 0 && !pays(skipped_spend_, b.movable_end - skipped_count_)) {
     for (std::uint32_t i = 0; i < b.movable_end; ++i) {
       if (skipped_[i]) wake_island(i);
     }

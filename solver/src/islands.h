@@ -117,6 +117,9 @@ class Islands {
   static bool near(const Box& p, const Box& q, double gap) {
     return std::abs(p.x - q.x) - (p.hx + q.hx) <= gap && std::abs(p.y - q.y) - (p.hy + q.hy) <= gap;
   }
+  // Whether leaving out bodies that took `spend` of the budget when last solved pays for the
+  // checks of the `solved` bodies left in (settle()): the one rule, before a search and after.
+  static bool pays(std::uint64_t spend, std::uint64_t solved) { return 2 * spend >= solved; }
   // How far a body at rest may go in a step and still be one (settle()).
   static double cap_of(const Broadphase& bp) { return bp.refile_distance(); }
   // Per slot: flags_ bits.
@@ -133,9 +136,9 @@ class Islands {
   // Per slot: the next body of its island, around (itself: in none). During settle() the solved
   // bodies, in none, use it as their union-find parent.
   std::vector<std::uint32_t> next_;
-  std::vector<std::uint32_t> spent_;  // per slot: budget its chains took when last solved
-  std::vector<Point> saved_v_;        // the solved bodies' velocities before the step, run order
-  std::vector<SlotRun> runs_;         // the first run_count_ hold this step's runs
+  std::vector<std::uint32_t> spent_;   // per slot: budget its chains took when last solved
+  std::vector<Point> saved_v_;         // the solved bodies' velocities before the step, run order
+  std::vector<SlotRun> runs_;          // the first run_count_ hold this step's runs
   std::vector<std::uint32_t> solved_;  // the first solved_count_: the slots of the runs, one by one
   std::uint32_t run_count_ = 0, solved_count_ = 0;
   std::span<const std::uint32_t> solved() const { return {solved_.data(), solved_count_}; }

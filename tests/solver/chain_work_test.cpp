@@ -188,10 +188,10 @@ TEST(ChainWork, OverlappingPileStepSearchWorkPerBodyIsBounded) {
 
 // Boxes created all in one place: every query a resolution makes meets every box of the pile, so
 // a budget on resolutions alone let one step of 3,000 such boxes take 41 s (each of its 193,000
-// resolutions examined and sorted 3,000 bodies). A query that meets many bodies now costs the
-// budget in proportion (StepContext::charge_met): the step's search work is then a small
-// multiple of the pairs the pile holds, its contacts, where it was 600-870 times them at 200 and
-// 800 boxes.
+// resolutions examined and sorted 3,000 bodies). A gathering that meets many bodies now costs
+// the budget in proportion (StepContext::charge_met): the step's search work is then a small
+// multiple of the pairs the pile holds, its contacts (4-42 times at 200 and 800 boxes), where it
+// was 600-870 times them; the bound, 100, lies between.
 TEST(ChainWork, APileInOnePlaceSearchesInProportionToItsPairs) {
   for (const int n : {200, 800}) {
     World w(world_def(Variant::kModern, VelocityRule::kInelastic));

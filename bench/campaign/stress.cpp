@@ -144,7 +144,7 @@ std::vector<StressCase> stress_cases() {
   add("squeeze", "converging_walls", {"n=10"}, true);
   add("squeeze", "converging_walls", {"n=1000"}, false);
   // What a platformer's level asks: seams between tiles, fast crates, walking off a ledge,
-  // friction on platforms and floors.
+  // friction on platforms and floors, gaps.
   add("level", "seam_slide", {"direction=-1"}, true);
   add("level", "seam_slide", {"direction=1"}, false);
   add("level", "seam_slide", {"direction=-1", "phase=0.001"}, false);
@@ -155,6 +155,13 @@ std::vector<StressCase> stress_cases() {
   add("level", "ledge_walk", {}, true);
   add("level", "platform_ride", {}, true);
   add("level", "rough_slide", {}, false);
+  // Gaps between level grounds: no wider than the box (the one-tile gap), it crosses; wider by
+  // more than two steps' travel, it falls in.
+  add("level", "gap_cross", {}, true);
+  add("level", "gap_cross", {"gap=0.9", "speed=8", "driven=0"}, false);
+  add("level", "gap_cross", {"gap=0.95", "speed=8"}, false);
+  add("level", "gap_cross", {"edge=0.25", "gap=0.25", "speed=30"}, false);
+  add("level", "gap_cross", {"gap=1.5", "speed=8", "driven=0"}, false);
   return cases;
 }
 

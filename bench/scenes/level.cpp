@@ -125,6 +125,51 @@ Scene ledge_walk(const SceneParams& p) {
   return s;
 }
 
+// A box (edge `edge`, 1 kg, frictionless) moving at `speed` from x = -2 - edge / 2 towards a gap
+// `gap` wide between two grounds whose tops are at y = 0, held at that speed by a driver
+// (driven = 1, a character) or sliding free (driven = 0); a pit floor at y = -3. A box wider than
+// the gap always has ground under it, so it crosses at its speed and never drops. One narrower
+// by more than two steps' travel is unsupported for a whole step: it falls in and ends on the
+// pit floor against the far ground's side. In between, a step cannot tell sinking for part of a
+// step from falling (docs/limits.md): nothing is expected of the crossing.
+Scene gap_cross(const SceneParams& p) {
+  Scene s;
+  s.name = "gap_cross";
+  const double edge = p.get("edge"), gap = p.get("gap"), v = p.get("speed"), dt = p.get("dt");
+  const double half = 0.5 * edge, g = 10.0, pit = 3.0;
+  const double x0 = -2.0 - half, t = dt * p.count("steps");
+  // The far ground reaches a metre past where the box's speed takes it (at most 1,000 km).
+  const double far = std::clamp(0.5 * (x0 + v * t + half + 1.0 - gap), 6.0, 5.0e5);
+  const bool stays = x0 + v * t + half <= gap + 2.0 * far;
+  box(s, "near", BodyKind::kStatic, {-6.0, -0.5 * pit}, {6.0, 0.5 * pit});
+  box(s, "far", BodyKind::kStatic, {gap + far, -0.5 * pit}, {far, 0.5 * pit});
+  box(s, "pit_floor", BodyKind::kStatic, {0.5 * gap, -pit - 0.5}, {0.5 * gap + 12.0, 0.5});
+  const std::size_t b = box(s, "box", BodyKind::kDynamic, {x0, half}, {half, half}, 1.0);
+  s.bodies[b].velocity = {v, 0.0};
+  if (p.get("driven") != 0) {
+    Driver drive;
+    drive.body = b;
+    drive.velocity = {v, 0.0};
+    drive.hold_y = false;
+    s.drivers.push_back(drive);
+  }
+  const double tolerance = build::kVisible * 0.5;
+  if (gap <= edge && stays) {
+    s.expect.push_back(build::expect_center(b, {x0 + v * t, half}, tolerance));
+    Expectation level =
+        build::expect_bounds(b, std::nullopt, half - tolerance, std::nullopt, std::nullopt);
+    level.from_step = 0;
+    s.expect.push_back(level);
+  } else if (gap >= edge + 2.0 * v * dt && v > 0.0) {
+    // Past the near edge, then at most the fall to the pit floor and the rest of the gap to cross,
+    // a step's travel and 0.25 s to spare.
+    const double fall = std::sqrt(2.0 * pit / g);
+    if (t >= (2.0 + gap) / v + fall + 0.25 + dt)
+      s.expect.push_back(build::expect_center(b, {gap - half, -pit + half}, tolerance));
+  }
+  return s;
+}
+
 // How far a friction stop or catch-up may land from the analytic one: by one step's travel,
 // v dt (an engine whose contact acts in the step after the move travels a whole step more;
 // semi-implicit integration lands within v dt / 2), with 5% for rounding, never under 2 cm.
@@ -181,6 +226,9 @@ std::size_t three(const SceneParams&) {
 std::size_t two(const SceneParams&) {
   return 2;
 }
+std::size_t four(const SceneParams&) {
+  return 4;
+}
 
 }  // namespace
 
@@ -233,6 +281,16 @@ std::vector<SceneRecipe> level_scenes() {
        rough_slide,
        two,
        60},
+      {"gap_cross",
+       "level",
+       "a box crossing a gap between two level grounds: no wider than the box, it crosses",
+       {{"edge", 1, 0.05, 2, false, "box edge, m"},
+        {"gap", 1, 0, 4, false, "gap between the grounds, m"},
+        {"speed", 2, 0, 100, false, "m/s"},
+        {"driven", 1, 0, 1, true, "1: a driver holds its x speed; 0: it slides free"}},
+       gap_cross,
+       four,
+       180},
   };
 }
 

@@ -65,18 +65,33 @@ bool face_covered(const StepContext& ctx, std::uint32_t b, int axis, int side, d
 Face entry_face(const StepContext& ctx, std::uint32_t a, std::uint32_t b) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
-  double entry[2];
+  const double g[2] = {ctx.def.gravity.x, ctx.def.gravity.y};
+  double entry[2], gap[2], closed[2], sink[2];
   int side[2];
   bool outside[2];
   for (int k = 0; k < 2; ++k) {
     const double r0 = bodies.start_pos(k, a) - bodies.start_pos(k, b);
     const double r1 = bodies.pos(k, a) - bodies.pos(k, b);
-    const double gap = std::abs(r0) - (bodies.half(k, a) + bodies.half(k, b));
+    gap[k] = std::abs(r0) - (bodies.half(k, a) + bodies.half(k, b));
     side[k] = r0 >= 0.0 ? 1 : -1;
-    outside[k] = gap >= -tol;
-    const double closed = side[k] * (r0 - r1);
-    entry[k] = !outside[k] ? kInside : (closed > 0.0 ? std::max(gap, 0.0) / closed : 0.0);
+    outside[k] = gap[k] >= -tol;
+    closed[k] = side[k] * (r0 - r1);
+    entry[k] = !outside[k] ? kInside : (closed[k] > 0.0 ? std::max(gap[k], 0.0) / closed[k] : 0.0);
+    // How far one step's gravity moves a towards b along k (0 when it pulls away or across).
+    sink[k] = std::max(-side[k] * g[k] * bodies.gravity_scale[a] * ctx.dt * ctx.dt, 0.0);
   }
+  // A face a started level with and closed on by no more than this step's gravity: a slid along it
+  // (something held a up at that level until the step began).
+  auto level = [&](int k) { return outside[k] && gap[k] <= tol && closed[k] <= sink[k] + tol; };
+  // The same one step later: a face a was level with when the last step began, sunk below by no
+  // more than that step's gravity, whose corner a touched along the other axis when this one began
+  // (the tolerance hid the corner then) and moves into now. Across a gap exactly as wide as a box,
+  // the box ends a step touching both corners and meets the far one only in the next step.
+  auto fell_level = [&](int k) {
+    const int u = 1 - k;
+    return !outside[k] && -gap[k] <= sink[k] + tol && closed[k] <= 2.0 * sink[k] + tol &&
+           sink[k] > 0.0 && outside[u] && gap[u] <= tol && closed[u] > 0.0;
+  };
   const Overlap o = overlap(bodies, a, b);
   if (!outside[0] && !outside[1]) {
     const int axis = overlap_axis(o);
@@ -84,11 +99,15 @@ Face entry_face(const StepContext& ctx, std::uint32_t a, std::uint32_t b) {
   }
   if (outside[0] != outside[1]) {
     const int axis = outside[0] ? 0 : 1;
+    if (fell_level(1 - axis)) return {1 - axis, side[1 - axis], 0.0};
     return {axis, side[axis], entry[axis]};
   }
-  // Over a corner: the later crossing, unless flush neighbours cover that face where a meets it.
+  // Over a corner: a face slid along (across a gap no wider than a, out on the far ground's top,
+  // not against its side); else the later crossing, unless flush neighbours cover that face where
+  // a meets it.
   const int last = entry[0] != entry[1] ? (entry[0] > entry[1] ? 0 : 1) : overlap_axis(o);
   const int other = 1 - last;
+  if (level(other) && !level(last)) return {other, side[other], entry[other]};
   auto covered = [&](int axis) {
     const int u = 1 - axis;
     const double lo =

@@ -9,11 +9,21 @@
 //   - Along each axis, the body was outside the immovable body at the start of the step (its start
 //     position relative to the immovable body's start, so a kinematic body's own motion counts)
 //     or already inside. A face can be entered only along an axis it was outside on.
-//   - Outside on one axis only: that axis's face, on the side the body started on.
-//   - Outside on both (it came in over a corner): the axis it crossed into last. That is the
-//     x face of the next tile for a box sliding onto it; but a face that flush immovable bodies
-//     cover (the join between tiles) is no way in, so then the other face is taken: the next
-//     tile's top, as if the tiles were one surface. Flush means within WorldDef::touch_tolerance.
+//   - Outside on one axis only: that axis's face, on the side the body started on; but see
+//     "a step later" below.
+//   - Outside on both (it came in over a corner): a face the body started level with (within
+//     the touch tolerance) that nothing but this step's gravity sink (g dt^2) closed is one it
+//     slid along, so it is the face: the body was held up at that level until the step began,
+//     and judging its path as one straight segment would have it cross that plane at once. A box
+//     crossing a gap no wider than itself so comes out on the far ground's top, not its side.
+//     Otherwise the axis it crossed into last. That is the x face of the next tile for a box
+//     sliding onto it; but a face that flush immovable bodies cover (the join between tiles) is
+//     no way in, so then the other face is taken: the next tile's top, as if the tiles were one
+//     surface. Flush means within WorldDef::touch_tolerance.
+//   - A step later: a body that was level with a face a step ago, sank below it by that step's
+//     gravity alone and touched its corner along the other axis when this step began (within
+//     the tolerance, so no contact then: a box exactly as wide as a gap ends a step touching both
+//     corners), and moves in along that axis now, slid along that face too.
 //   - Inside on both at the start (created overlapping, or left so by a crush): least overlap.
 // The resolver also resolves a body's immovable contacts in the order it entered them, so a box
 // resting on one tile is pushed up out of it before the next tile's corner is looked at.

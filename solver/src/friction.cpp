@@ -131,7 +131,8 @@ void Friction::normal_impulses(const Bodies& bodies, const std::vector<Link>& li
 }
 
 void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<Link>& links,
-                     const std::vector<Point>& pre_velocity, double dt, Reach* reach) {
+                     const std::vector<Point>& pre_velocity, double dt, double tolerance,
+                     Reach* reach) {
   if (links.empty()) return;
   const std::size_t n_links = links.size();
   // Per body, as many as the world has; per link, as many as this step has, growing by a quarter
@@ -164,6 +165,7 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
   if (active_.empty()) return;
 
   resize_buffer(v_before_, bodies_.size());
+  reserve_buffer(order_, bodies_.size());
   for (std::size_t u = 0; u < bodies_.size(); ++u)
     v_before_[u] = {bodies.vx[bodies_[u]], bodies.vy[bodies_[u]]};
   assign_buffer(applied_, n_links, 0.0);
@@ -191,14 +193,57 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
     }
     if (!changed) break;
   }
-  for (std::size_t u = 0; u < bodies_.size(); ++u) {
-    const std::uint32_t slot = bodies_[u];
-    const double dvx = bodies.vx[slot] - v_before_[u].x, dvy = bodies.vy[slot] - v_before_[u].y;
-    if (dvx == 0.0 && dvy == 0.0) continue;
-    bodies.pos(0, slot) += 0.5 * dvx * dt;
-    bodies.pos(1, slot) += 0.5 * dvy * dt;
-    broadphase.note_move(slot, bodies.x(slot), bodies.y(slot));
-    if (reach != nullptr) reach->note(slot, bodies.x(slot), bodies.y(slot));
+  place(bodies, broadphase, dt, tolerance, reach);
+}
+
+void Friction::place(Bodies& bodies, Broadphase& broadphase, double dt, double tolerance,
+                     Reach* reach) {
+  // Local body k's move along axis t: half the velocity friction took off, times dt.
+  auto move_of = [&](std::uint32_t k, int t) {
+    const std::uint32_t slot = bodies_[k];
+    return 0.5 *
+           ((t == 0 ? bodies.vx[slot] : bodies.vy[slot]) -
+            (t == 0 ? v_before_[k].x : v_before_[k].y)) *
+           dt;
+  };
+  for (int t = 0; t < 2; ++t) {
+    const int u = 1 - t;
+    order_.clear();
+    for (std::uint32_t k = 0; k < bodies_.size(); ++k)
+      if (move_of(k, t) != 0.0) order_.push_back(k);
+    // Front first: a body moves before the ones behind it that follow it into the room it left.
+    auto ahead = [&](std::uint32_t k) {
+      return (move_of(k, t) > 0.0 ? 1.0 : -1.0) * bodies.pos(t, bodies_[k]);
+    };
+    std::sort(order_.begin(), order_.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const double pa = ahead(a), pb = ahead(b);
+      return pa != pb ? pa > pb : bodies_[a] < bodies_[b];
+    });
+    for (const std::uint32_t k : order_) {
+      const std::uint32_t i = bodies_[k];
+      const double d = move_of(k, t);
+      const double sign = d > 0.0 ? 1.0 : -1.0;
+      double move = std::abs(d);
+      // The bodies across the path that overlap i along the other axis: the move stops where i
+      // would touch the nearest one ahead (at once, against one it touches).
+      double centre[2] = {bodies.x(i), bodies.y(i)}, half[2] = {bodies.hx(i), bodies.hy(i)};
+      centre[t] += 0.5 * sign * move;
+      half[t] += 0.5 * move;
+      broadphase.for_each_in_box(
+          bodies, centre[0], centre[1], half[0], half[1], tolerance, [&](std::uint32_t j) {
+            if (j == i) return;
+            const double across = bodies.half(u, i) + bodies.half(u, j) -
+                                  std::abs(bodies.pos(u, i) - bodies.pos(u, j));
+            if (across <= tolerance) return;
+            const double gap = sign * (bodies.pos(t, j) - bodies.pos(t, i));
+            if (gap <= 0.0) return;  // behind i's centre: moving on takes i out of it
+            move = std::min(move, std::max(0.0, gap - bodies.half(t, i) - bodies.half(t, j)));
+          });
+      if (move == 0.0) continue;
+      bodies.pos(t, i) += sign * move;
+      broadphase.note_move(i, bodies.x(i), bodies.y(i));
+      if (reach != nullptr) reach->note(i, bodies.x(i), bodies.y(i));
+    }
   }
 }
 

@@ -20,6 +20,9 @@
 // velocity components are never changed: along them the body counts as immovable. Friction acts
 // over the whole step, so a body also moves by half the velocity it took off times dt (the
 // trapezoidal rule): a box sliding at v stops after v^2 / (2 mu g), not a step's travel beyond.
+// That move never takes a body into another (a crate carried into a wall, or slowed back into
+// the pusher behind it): it stops where the body would touch the first body across its path,
+// axis by axis, the bodies in front moving first so that those behind may follow.
 #pragma once
 
 #include "bodies.h"
@@ -36,9 +39,10 @@ class Friction {
  public:
   // `pre_velocity`: per dynamic slot, the velocity after drives and gravity, before push-out.
   // Each move is noted in `reach` (may be null) as well as in the broadphase.
+  // `tolerance`: WorldDef::touch_tolerance, m.
   void apply(Bodies& bodies, Broadphase& broadphase,
              const std::vector<VelocityResponse::Link>& links,
-             const std::vector<Point>& pre_velocity, double dt, Reach* reach);
+             const std::vector<Point>& pre_velocity, double dt, double tolerance, Reach* reach);
 
  private:
   using Link = VelocityResponse::Link;
@@ -55,6 +59,9 @@ class Friction {
   void normal_impulses(const Bodies& bodies, const std::vector<Link>& links,
                        const std::vector<Point>& pre_velocity, int axis);
   std::uint32_t local(std::uint32_t slot) const { return local_[slot]; }
+  // Moves each body by the trapezoidal rule's share (half what friction took off its velocity,
+  // times dt), cut short where it would meet another body.
+  void place(Bodies& bodies, Broadphase& broadphase, double dt, double tolerance, Reach* reach);
 
   std::vector<double> normal_, limit_, applied_;   // per link
   std::vector<std::uint32_t> active_;              // links that can rub, in step order
@@ -64,6 +71,7 @@ class Friction {
   std::vector<std::uint32_t> level_, adj_start_, adj_, queue_;
   std::vector<double> carried_;
   std::vector<Point> v_before_;
+  std::vector<std::uint32_t> order_;  // local bodies moving along one axis, front first
 };
 
 }  // namespace chain::detail

@@ -208,7 +208,10 @@ struct World::Impl {
     }
     clock.lap(profile.velocity);
 
-    if (rough) friction.apply(bodies, broadphase, response.links(), motion.pre_velocity, dt, reach);
+    if (rough) {
+      friction.apply(bodies, broadphase, response.links(), motion.pre_velocity, dt,
+                     def.touch_tolerance, reach);
+    }
     clock.lap(profile.friction);
   }
 

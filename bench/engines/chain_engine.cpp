@@ -276,18 +276,9 @@ EngineDef register_chain() {
       "of pushes; each push stops short of other boxes' centres (its own chain's walls excepted, "
       "so squeezes are found), but the step's net motion, judged as one straight move, can cross "
       "a third box";
-  // Measured with `chainbench stress --filter "large time step"`; to go when the solver holds
-  // large steps (a later issue).
-  const char* collapses =
-      "at dt >= 0.35 s the top box of a resting two-box stack passes through the lower one in the "
-      "first step and ends on the floor beside it, at (-0.5, 0.5), 1.12 m from its place; "
-      "Chipmunk holds it within 1e-4 m and Box2D within 0.02 m";
   e.known_failures = {
       {"overlapping_pile n=1000", "tunnelled", through},
-      {"overlapping_pile n=200", "tunnelled", through},
-      {"stack n=2 dt=0.35 steps=9", "tunnelled", collapses},
-      {"stack n=2 dt=0.5 steps=6", "tunnelled", collapses},
-      {"stack n=2 dt=1 steps=3", "tunnelled", collapses}};
+      {"overlapping_pile n=200", "tunnelled", through}};
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
     return std::make_unique<ChainEngine>(spec, scene);
   };

@@ -40,6 +40,11 @@ BodyId World::create_body(const BodyDef& def) {
   detail::push_buffer(impl_->slot_of_id, impl_->bodies.size());
   impl_->bodies.append(def, id);
   if (def.friction > 0.0) ++impl_->rough_bodies;
+  if (def.type == BodyType::kDynamic) {
+    impl_->sink_rate = std::max(
+        impl_->sink_rate, detail::sink_rate(impl_->def.gravity, impl_->bodies.gravity_scale.back(),
+                                            def.half_extents));
+  }
   impl_->dirty = true;
   impl_->rest.disturb();
   if (!impl_->sorted_once || def.type != BodyType::kDynamic ||
@@ -54,6 +59,11 @@ void World::destroy_body(BodyId id) {
   w.rest.disturb();
   w.islands.wake(s);
   if (w.bodies.friction[s] > 0.0) --w.rough_bodies;
+  if (w.bodies.type[s] == BodyType::kDynamic &&
+      detail::sink_rate(w.def.gravity, w.bodies.gravity_scale[s],
+                        {w.bodies.hx(s), w.bodies.hy(s)}) >= w.sink_rate) {
+    w.sink_stale = true;
+  }
   w.slot_of_id[id.value] = detail::kNoSlot;
   if (w.kill_in_place(s)) {
     w.bodies.kill(s);
@@ -120,13 +130,83 @@ void World::set_velocity(BodyId id, Vec2 velocity) {
   impl_->bodies.vy[s] = velocity.y;
 }
 
-// The step as a list of stages (world.h's numbered list), each in its own file; the clock laps
-// each into the StepProfile when profiling.
 void World::step(double dt) {
   if (!std::isfinite(dt) || dt <= 0.0) {
     throw std::invalid_argument("step: dt must be finite and > 0, got " + number(dt));
   }
   Impl& w = *impl_;
+  std::uint32_t n = 1;
+  if (w.def.variant == Variant::kModern) {
+    if (w.sink_stale) {
+      w.sink_rate = 0.0;
+      for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
+        if (w.bodies.type[i] != BodyType::kDynamic || w.bodies.dead(i)) continue;
+        w.sink_rate =
+            std::max(w.sink_rate, detail::sink_rate(w.def.gravity, w.bodies.gravity_scale[i],
+                                                    {w.bodies.hx(i), w.bodies.hy(i)}));
+      }
+      w.sink_stale = false;
+    }
+    n = detail::substep_count(dt, w.sink_rate);
+  }
+  if (n == 1) {
+    w.step_once(dt, false);
+    return;
+  }
+  // Sub-steps (substeps.h): each of dt / n; the step reports all of them together. A drive sets
+  // velocities at the start of the step only, as world.h says: in the later sub-steps a driven
+  // body keeps what the earlier ones left it (a character controller that sets a speed once a
+  // frame sees the same), its drive's values stood in for by its velocity meanwhile.
+  const double part = dt / n;
+  StepStats stats;
+  StepProfile profile;
+  w.carried_crushes.clear();
+  w.held_drives.clear();
+  for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
+    if (w.bodies.driven[i] != 0)
+      w.held_drives.push_back({w.bodies.id[i], w.bodies.drive_x[i], w.bodies.drive_y[i]});
+  }
+  for (std::uint32_t k = 0; k < n; ++k) {
+    if (k > 0) {
+      w.carried_touch.assign(w.bodies.touching.begin(), w.bodies.touching.end());
+      for (const Impl::HeldDrive& d : w.held_drives) {
+        const std::uint32_t s = w.slot_of_id[d.id];
+        if (w.bodies.driven[s] & detail::kDriveX) w.bodies.drive_x[s] = w.bodies.vx[s];
+        if (w.bodies.driven[s] & detail::kDriveY) w.bodies.drive_y[s] = w.bodies.vy[s];
+      }
+    }
+    w.step_once(part, k > 0);
+    if (k == 0) {
+      stats = w.stats;
+    } else {
+      detail::add_substep(stats, w.stats);
+    }
+    detail::add_substep(profile, w.profile);
+    w.carried_crushes.insert(w.carried_crushes.end(), w.crushes.begin(), w.crushes.end());
+  }
+  for (const Impl::HeldDrive& d : w.held_drives) {
+    const std::uint32_t s = w.slot_of_id[d.id];
+    w.bodies.drive_x[s] = d.x;
+    w.bodies.drive_y[s] = d.y;
+  }
+  // A body crushed in several sub-steps is reported once, in the order of its first report.
+  w.crushes.clear();
+  for (const CrushEvent& e : w.carried_crushes) {
+    const bool seen = std::any_of(w.crushes.begin(), w.crushes.end(), [&](const CrushEvent& c) {
+      return c.body == e.body && c.anchor == e.anchor && c.blocker == e.blocker && c.axis == e.axis;
+    });
+    if (!seen) w.crushes.push_back(e);
+  }
+  stats.crush_events = static_cast<std::uint32_t>(w.crushes.size());
+  stats.substeps = n;
+  w.stats = stats;
+  w.profile = profile;
+}
+
+// The step as a list of stages (world.h's numbered list), each in its own file; the clock laps
+// each into the StepProfile when profiling.
+void World::Impl::step_once(double dt, bool carry) {
+  Impl& w = *this;
   detail::StageClock clock(w.profiling);
   w.profile = StepProfile{};
   const bool modern = w.def.variant == Variant::kModern;
@@ -173,6 +253,10 @@ void World::step(double dt) {
     } else {
       w.last_partial = false;
     }
+  }
+  if (carry) {
+    for (std::size_t i = 0; i < carried_touch.size(); ++i)
+      detail::add_touch(w.bodies.touching[i], static_cast<std::uint8_t>(carried_touch[i]));
   }
   w.file_report(examined);
   if (modern) {

@@ -17,6 +17,7 @@
 #include "seed2014_resolver.h"
 #include "stage_clock.h"
 #include "step_context.h"
+#include "substeps.h"
 #include "validate.h"
 #include "velocity_response.h"
 #include "worker_pool.h"
@@ -53,6 +54,17 @@ struct World::Impl {
   detail::Motion motion;
   detail::Friction friction;
   std::size_t rough_bodies = 0;  // bodies with friction > 0: friction runs only while there are
+  // The largest detail::sink_rate of the dynamic bodies (modern), for sub-steps; `sink_stale`
+  // when the body that had it was destroyed (found again at the next step).
+  double sink_rate = 0.0;
+  bool sink_stale = false;
+  std::vector<detail::TouchBits> carried_touch;  // touching flags of the step's earlier sub-steps
+  std::vector<CrushEvent> carried_crushes;       // and its crush events
+  struct HeldDrive {
+    std::uint32_t id;  // BodyId value
+    double x, y;       // the drive's velocity components, m/s
+  };
+  std::vector<HeldDrive> held_drives;  // the drives of a sub-stepped step, while stood in for
   detail::ChainResolver modern;
   detail::Seed2014Resolver seed2014;
   detail::Layout layout;
@@ -132,6 +144,10 @@ struct World::Impl {
     empty.erase(empty.begin(), empty.begin() + static_cast<std::ptrdiff_t>(placed.size()));
     return true;
   }
+
+  // One step (or sub-step) of dt; `carry`: OR the touching flags of carried_touch into the
+  // step's (a later sub-step).
+  void step_once(double dt, bool carry);
 
   // Files bodies created or destroyed since the last step and clears the last step's records.
   void prepare() {

@@ -143,6 +143,10 @@ struct StepStats {
   // 1 if the step left islands out, found that a solved body came near one (or moved one, or
   // ran out of budget), and was solved again whole: the counts are those of the whole step.
   std::uint32_t redone = 0;
+  // Sub-steps the step was split into (modern): 1 unless its gravity would sink some dynamic body
+  // by more than its half extent, then as many (up to 64) as keep each sub-step's sink under it.
+  // The other counts are then those of all the sub-steps together.
+  std::uint32_t substeps = 1;
 };
 
 // Where the last step's time went: wall time per stage of World::step, in the order the stages

@@ -208,7 +208,10 @@ class World {
                   std::vector<std::uint32_t>& changed) const;
 
   // Advances by dt seconds. Throws std::invalid_argument unless dt is finite and > 0; any dt is
-  // valid, and fast bodies are swept whatever it is (modern). Throws std::length_error for a
+  // valid, and fast bodies are swept whatever it is (modern). A step whose gravity would sink a
+  // dynamic box past its half extent is taken as up to 64 equal sub-steps that each sink it less
+  // (modern; StepStats::substeps), drives setting their velocities at the first only, so resting
+  // stacks hold at any dt; the step reports all of them together. Throws std::length_error for a
   // modern world of 2^30 bodies or more (its near lists keep 32-bit box offsets).
   // Deterministic: the same bodies, in any creation order, give the same bits (modern variant);
   // so do the bodies created and destroyed between two steps, in any order of the calls.

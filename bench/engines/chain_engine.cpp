@@ -276,9 +276,8 @@ EngineDef register_chain() {
       "of pushes; each push stops short of other boxes' centres (its own chain's walls excepted, "
       "so squeezes are found), but the step's net motion, judged as one straight move, can cross "
       "a third box";
-  e.known_failures = {
-      {"overlapping_pile n=1000", "tunnelled", through},
-      {"overlapping_pile n=200", "tunnelled", through}};
+  e.known_failures = {{"overlapping_pile n=1000", "tunnelled", through},
+                      {"overlapping_pile n=200", "tunnelled", through}};
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {
     return std::make_unique<ChainEngine>(spec, scene);
   };

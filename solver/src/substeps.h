@@ -34,6 +34,7 @@ inline double sink_rate(Vec2 gravity, double gravity_scale, Vec2 half) {
 
 // The sub-steps a step of dt takes when the fastest-sinking body's rate is `rate`.
 inline std::uint32_t substep_count(double dt, double rate) {
+  if (dt * dt * rate <= kMaxSinkShare) return 1;  // the common case, without a square root
   const double n = std::ceil(dt * std::sqrt(rate / kMaxSinkShare));
   return n <= 1.0 ? 1u : static_cast<std::uint32_t>(std::min<double>(n, kMaxSubsteps));
 }

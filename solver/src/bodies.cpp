@@ -77,8 +77,8 @@ auto state_fields(const Bodies& b, std::uint32_t i, std::span<const Origin> orig
                     order_key(b.mass[i]), order_key(b.vx[i]), order_key(b.vy[i]),
                     order_key(b.gravity_scale[i]), order_key(b.restitution[i]),
                     order_key(b.friction[i]), b.driven[i], order_key(b.drive_x[i]),
-                    order_key(b.drive_y[i]), order_key(o.cy), order_key(o.cx), order_key(o.vx),
-                    order_key(o.vy), b.id[i]);
+                    order_key(b.drive_y[i]), (b.filter.empty() ? Bodies::kNoFilter : b.filter[i]),
+                    order_key(o.cy), order_key(o.cx), order_key(o.vx), order_key(o.vy), b.id[i]);
 }
 
 }  // namespace
@@ -106,6 +106,11 @@ void Bodies::append(const BodyDef& def, std::uint32_t body_id) {
   touching.push_back(TouchBits{});
   type.push_back(def.type);
   id.push_back(body_id);
+  const std::uint32_t f = std::uint32_t{def.category_bits} | std::uint32_t{def.mask_bits} << 16;
+  if (!filter.empty() || f != kNoFilter) {
+    if (filter.empty()) filter.assign(id.size() - 1, kNoFilter);  // the first body that filters
+    push_buffer(filter, f);
+  }
 }
 
 void Bodies::kill(std::uint32_t slot) {

@@ -69,6 +69,11 @@ struct Bodies {
   std::vector<TouchBits> touching;  // touching:: bits of the last step
   std::vector<BodyType> type;
   std::vector<std::uint32_t> id;  // BodyId value of each slot
+  // BodyDef::category_bits in the low 16 bits and mask_bits in the high 16: one load a body.
+  // Empty while every body has the defaults (category 1, mask 0xFFFF: all collide), so a world
+  // that filters nothing holds nothing for it.
+  std::vector<std::uint32_t> filter;
+  static constexpr std::uint32_t kNoFilter = 0xFFFF0001u;
 
   // Valid after canonicalize(): slots [0, dynamic_end) are dynamic, [dynamic_end, movable_end)
   // kinematic and the rest static.
@@ -90,6 +95,12 @@ struct Bodies {
     return i < movable_end ? (axis == 0 ? start[i].x : start[i].y) : box[i].center[axis];
   }
   bool immovable(std::uint32_t i) const { return i >= dynamic_end; }
+  // Whether bodies i and j collide: each one's category is in the other's mask (BodyDef).
+  bool collides(std::uint32_t i, std::uint32_t j) const {
+    if (filter.empty()) return true;
+    const std::uint32_t a = filter[i], b = filter[j];
+    return (a & (b >> 16)) != 0 && (b & (a >> 16)) != 0;
+  }
 
   // The id of a slot whose body was destroyed in place (kill()): a dynamic slot with no body,
   // whose centre is NaN, so that it overlaps nothing, and that gravity and drives leave alone.
@@ -102,6 +113,7 @@ struct Bodies {
   void each_array(Fn&& fn) {
     fn(box), fn(vx), fn(vy), fn(mass), fn(gravity_scale), fn(restitution), fn(friction);
     fn(drive_x), fn(drive_y), fn(driven), fn(start), fn(touching), fn(type), fn(id);
+    if (!filter.empty()) fn(filter);
   }
 
   void append(const BodyDef& def, std::uint32_t body_id);

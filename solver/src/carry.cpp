@@ -95,7 +95,9 @@ void Carry::run(StepContext& ctx, ChainState& state, std::vector<SweptPlacement>
                                      [&](std::uint32_t d) { found_.push_back(d); });
       std::sort(found_.begin(), found_.end());
       for (const std::uint32_t d : found_) {
-        if (bodies.immovable(d) || result_of_[d] != kNone || state.crushed(d)) continue;
+        if (bodies.immovable(d) || result_of_[d] != kNone || state.crushed(d) ||
+            !bodies.collides(f, d))
+          continue;
         if (s * (bodies.start_pos(k, d) - bodies.start_pos(k, f)) <= 0.0) continue;  // behind
         const double across =
             bodies.half(t, f) + bodies.half(t, d) - std::abs(pos(at, t) - bodies.pos(t, d));

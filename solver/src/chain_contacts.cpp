@@ -46,7 +46,7 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     near_generation_ = bp.generation();
     near_pairs_.clear();
     ctx.broadphase.for_each_near_pair(bodies, [&](std::uint32_t i, std::uint32_t j) {
-      push_buffer(near_pairs_, {i, j});
+      if (bodies.collides(i, j)) push_buffer(near_pairs_, {i, j});  // else never a contact
     });
     state_.begin_pass(bodies, &near_pairs_);
     examined_after_scan_ = bp.examined();
@@ -112,7 +112,8 @@ void ChainResolver::gather_contacts(StepContext& ctx) {
     if (ctx.skipped != nullptr && ctx.skipped[i]) continue;
     if (bp.stale(i)) {
       bp.for_each_overlap(bodies, i, tol, [&](std::uint32_t j) {
-        if ((j < i || !bp.stale(j)) && !(bodies.immovable(i) && bodies.immovable(j)))
+        if ((j < i || !bp.stale(j)) && !(bodies.immovable(i) && bodies.immovable(j)) &&
+            bodies.collides(i, j))
           push_buffer(refiled_pairs, {std::min(i, j), std::max(i, j)});
       });
       continue;

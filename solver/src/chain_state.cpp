@@ -122,7 +122,9 @@ void ChainState::begin_chain() {
   const Broadphase& bp = ctx.broadphase;
   const Bodies& b = ctx.bodies;
   if (bp.stale(around)) {  // filed again since the near pairs were taken: they do not hold for it
-    bp.for_each_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
+    bp.for_each_overlap(b, around, tol, [&](std::uint32_t j) {
+      if (b.collides(around, j)) out.push_back(j);
+    });
     std::sort(out.begin() + static_cast<std::ptrdiff_t>(from), out.end());  // as near lists are
     return std::any_of(out.begin() + from, out.end(),
                        [&](std::uint32_t j) { return b.immovable(j); });
@@ -134,7 +136,9 @@ void ChainState::begin_chain() {
   for_each_hit(b.box.data(), around, near(around), OverlapTest(tol), [&](std::uint32_t j) {
     if (!bp.stale(j)) out.push_back(j);
   });
-  bp.for_each_stale_overlap(b, around, tol, [&](std::uint32_t j) { out.push_back(j); });
+  bp.for_each_stale_overlap(b, around, tol, [&](std::uint32_t j) {
+    if (b.collides(around, j)) out.push_back(j);
+  });
   // In slot order, as the near list alone would give them: the list's hits are, the overlay's
   // come after them in the overlay's order.
   std::sort(out.begin() + static_cast<std::ptrdiff_t>(from), out.end());

@@ -155,7 +155,7 @@ void ContinuousCollision::gather_pairs(StepContext& ctx) {
     ctx.broadphase.for_each_in_box(bodies, 0.5 * (s.lo[0] + s.hi[0]), 0.5 * (s.lo[1] + s.hi[1]),
                                    0.5 * (s.hi[0] - s.lo[0]), 0.5 * (s.hi[1] - s.lo[1]), pad,
                                    [&](std::uint32_t j) {
-                                     if (j == f || fast_[j]) return;
+                                     if (j == f || fast_[j] || !bodies.collides(f, j)) return;
                                      if (!bodies.immovable(f)) {
                                        pairs_.push_back({f, j});
                                      } else if (!bodies.immovable(j)) {
@@ -175,7 +175,8 @@ void ContinuousCollision::gather_pairs(StepContext& ctx) {
     const Swept s = swept(bodies, by_x_[a]);
     for (std::size_t b = a + 1; b < by_x_.size() && low_x(by_x_[b]) <= s.hi[0]; ++b) {
       const Swept t = swept(bodies, by_x_[b]);
-      if (t.lo[1] <= s.hi[1] && s.lo[1] <= t.hi[1]) add(by_x_[a], by_x_[b]);
+      if (t.lo[1] <= s.hi[1] && s.lo[1] <= t.hi[1] && bodies.collides(by_x_[a], by_x_[b]))
+        add(by_x_[a], by_x_[b]);
     }
   }
 }
@@ -230,6 +231,7 @@ SweptPlacement ContinuousCollision::slide(StepContext& ctx, ChainState& state, s
     std::uint32_t wall = kNoSlot;
     int first_side = 0;
     for (const std::uint32_t c : walls_) {
+      if (!bodies.collides(f, c)) continue;
       double r[2], u[2], ext[2], d[2];
       for (int k = 0; k < 2; ++k) {
         d[k] = bodies.pos(k, c) - bodies.start_pos(k, c);
@@ -246,7 +248,7 @@ SweptPlacement ContinuousCollision::slide(StepContext& ctx, ChainState& state, s
       const double meet = bodies.pos(v, c) + r[v] + toi.at * u[v];
       const double lo = std::max(meet - bodies.half(v, f), bodies.pos(v, c) - bodies.half(v, c));
       const double hi = std::min(meet + bodies.half(v, f), bodies.pos(v, c) + bodies.half(v, c));
-      if (face_covered(ctx, c, k, side, lo, hi)) continue;  // a join: it slides on over it
+      if (face_covered(ctx, f, c, k, side, lo, hi)) continue;  // a join: it slides on over it
       first = toi;
       wall = c;
       first_side = side;

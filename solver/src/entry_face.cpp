@@ -16,8 +16,8 @@ constexpr int kMaxCovers = 8;
 
 }  // namespace
 
-bool face_covered(const StepContext& ctx, std::uint32_t b, int axis, int side, double lo,
-                  double hi) {
+bool face_covered(const StepContext& ctx, std::uint32_t a, std::uint32_t b, int axis, int side,
+                  double lo, double hi) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
   const int u = 1 - axis;
@@ -34,7 +34,7 @@ bool face_covered(const StepContext& ctx, std::uint32_t b, int axis, int side, d
   int count = 0;
   ctx.broadphase.for_each_in_box(
       bodies, centre[0], centre[1], half[0], half[1], tol, [&](std::uint32_t j) {
-        if (j == b || !bodies.immovable(j)) return;
+        if (j == b || !bodies.immovable(j) || !bodies.collides(a, j)) return;
         const double near = bodies.pos(axis, j) - side * bodies.half(axis, j);
         if (std::abs(near - face) > tol) return;
         int k = count;
@@ -114,7 +114,7 @@ Face entry_face(const StepContext& ctx, std::uint32_t a, std::uint32_t b) {
         std::max(bodies.pos(u, a) - bodies.half(u, a), bodies.pos(u, b) - bodies.half(u, b));
     const double hi =
         std::min(bodies.pos(u, a) + bodies.half(u, a), bodies.pos(u, b) + bodies.half(u, b));
-    return face_covered(ctx, b, axis, side[axis], lo, hi);
+    return face_covered(ctx, a, b, axis, side[axis], lo, hi);
   };
   const int axis = covered(last) && !covered(other) ? other : last;
   return {axis, side[axis], entry[axis]};

@@ -46,8 +46,9 @@ struct Face {
 Face entry_face(const StepContext& ctx, std::uint32_t a, std::uint32_t b);
 
 // True when the face of immovable body b on side `side` along `axis` is covered over [lo, hi]
-// (along the other axis) by other immovable bodies flush against it: a join, not an edge.
-bool face_covered(const StepContext& ctx, std::uint32_t b, int axis, int side, double lo,
-                  double hi);
+// (along the other axis) by other immovable bodies flush against it that collide with body a: a
+// join, not an edge.
+bool face_covered(const StepContext& ctx, std::uint32_t a, std::uint32_t b, int axis, int side,
+                  double lo, double hi);
 
 }  // namespace chain::detail

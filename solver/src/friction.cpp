@@ -10,6 +10,7 @@ namespace chain::detail {
 namespace {
 
 constexpr std::uint32_t kUnreached = 0xffffffffu;
+constexpr std::uint32_t kUnnumbered = 0xffffffffu;  // local_ of a slot no link touches
 
 }  // namespace
 
@@ -25,19 +26,10 @@ bool Friction::slides(const Bodies& bodies, const Link& l) {
 }
 
 void Friction::number_bodies(const Bodies& bodies, const std::vector<Link>& links) {
-  if (local_.size() != bodies.size()) {
-    assign_buffer(local_, bodies.size(), 0);
-    assign_buffer(local_mark_, bodies.size(), 0);
-    mark_ = 0;
-  }
-  if (++mark_ == 0) {
-    std::fill(local_mark_.begin(), local_mark_.end(), 0u);
-    mark_ = 1;
-  }
+  if (local_.size() != bodies.size()) assign_buffer(local_, bodies.size(), kUnnumbered);
   bodies_.clear();
   auto number = [&](std::uint32_t slot) {
-    if (bodies.immovable(slot) || local_mark_[slot] == mark_) return;
-    local_mark_[slot] = mark_;
+    if (bodies.immovable(slot) || local_[slot] != kUnnumbered) return;
     local_[slot] = static_cast<std::uint32_t>(bodies_.size());
     bodies_.push_back(slot);
   };
@@ -153,6 +145,16 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
   // No rough contact slides: every impulse of the solve would be zero and change no bit.
   if (!any) return;
   number_bodies(bodies, links);
+  // local_ back to unnumbered for the next step, however this one ends: the work is the bodies
+  // numbered, and no per-slot mark is kept beside it.
+  struct Unnumber {
+    std::vector<std::uint32_t>& local;
+    const std::vector<std::uint32_t>& numbered;
+    ~Unnumber() {
+      for (const std::uint32_t slot : numbered)
+        local[slot] = kUnnumbered;
+    }
+  } unnumber{local_, bodies_};
   // Both axes' normal impulses come from the velocities the velocity rule left, before any
   // friction changes them.
   assign_buffer(normal_, n_links, 0.0);
@@ -165,7 +167,6 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
   if (active_.empty()) return;
 
   resize_buffer(v_before_, bodies_.size());
-  reserve_buffer(order_, bodies_.size());
   for (std::size_t u = 0; u < bodies_.size(); ++u)
     v_before_[u] = {bodies.vx[bodies_[u]], bodies.vy[bodies_[u]]};
   assign_buffer(applied_, n_links, 0.0);
@@ -206,20 +207,23 @@ void Friction::place(Bodies& bodies, Broadphase& broadphase, double dt, double t
             (t == 0 ? v_before_[k].x : v_before_[k].y)) *
            dt;
   };
+  // The movers of one axis, front first, in queue_ (the levels' queue, done with by now: it has
+  // room for every body the links touch).
+  std::vector<std::uint32_t>& order = queue_;
   for (int t = 0; t < 2; ++t) {
     const int u = 1 - t;
-    order_.clear();
+    order.clear();
     for (std::uint32_t k = 0; k < bodies_.size(); ++k)
-      if (move_of(k, t) != 0.0) order_.push_back(k);
+      if (move_of(k, t) != 0.0) order.push_back(k);
     // Front first: a body moves before the ones behind it that follow it into the room it left.
     auto ahead = [&](std::uint32_t k) {
       return (move_of(k, t) > 0.0 ? 1.0 : -1.0) * bodies.pos(t, bodies_[k]);
     };
-    std::sort(order_.begin(), order_.end(), [&](std::uint32_t a, std::uint32_t b) {
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
       const double pa = ahead(a), pb = ahead(b);
       return pa != pb ? pa > pb : bodies_[a] < bodies_[b];
     });
-    for (const std::uint32_t k : order_) {
+    for (const std::uint32_t k : order) {
       const std::uint32_t i = bodies_[k];
       const double d = move_of(k, t);
       const double sign = d > 0.0 ? 1.0 : -1.0;
@@ -231,7 +235,7 @@ void Friction::place(Bodies& bodies, Broadphase& broadphase, double dt, double t
       half[t] += 0.5 * move;
       broadphase.for_each_in_box(
           bodies, centre[0], centre[1], half[0], half[1], tolerance, [&](std::uint32_t j) {
-            if (j == i) return;
+            if (j == i || !bodies.collides(i, j)) return;
             const double across = bodies.half(u, i) + bodies.half(u, j) -
                                   std::abs(bodies.pos(u, i) - bodies.pos(u, j));
             if (across <= tolerance) return;

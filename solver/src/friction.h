@@ -63,15 +63,13 @@ class Friction {
   // times dt), cut short where it would meet another body.
   void place(Bodies& bodies, Broadphase& broadphase, double dt, double tolerance, Reach* reach);
 
-  std::vector<double> normal_, limit_, applied_;   // per link
-  std::vector<std::uint32_t> active_;              // links that can rub, in step order
-  std::vector<std::uint32_t> local_, local_mark_;  // per slot
-  std::uint32_t mark_ = 0;
+  std::vector<double> normal_, limit_, applied_;  // per link
+  std::vector<std::uint32_t> active_;             // links that can rub, in step order
+  std::vector<std::uint32_t> local_;   // per slot: its local number, unnumbered between steps
   std::vector<std::uint32_t> bodies_;  // per local body: its slot
   std::vector<std::uint32_t> level_, adj_start_, adj_, queue_;
   std::vector<double> carried_;
   std::vector<Point> v_before_;
-  std::vector<std::uint32_t> order_;  // local bodies moving along one axis, front first
 };
 
 }  // namespace chain::detail

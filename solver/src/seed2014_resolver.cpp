@@ -31,8 +31,9 @@ void Seed2014Resolver::resolve(StepContext& ctx, const std::vector<std::uint32_t
 
 std::size_t Seed2014Resolver::gather_near(StepContext& ctx, std::uint32_t body) {
   const std::size_t begin = near_.size();
-  ctx.broadphase.for_each_stale_candidate(ctx.bodies, body,
-                                          [&](std::uint32_t j) { near_.push_back(j); });
+  ctx.broadphase.for_each_stale_candidate(ctx.bodies, body, [&](std::uint32_t j) {
+    if (ctx.bodies.collides(body, j)) near_.push_back(j);
+  });
   const auto& id = ctx.bodies.id;
   std::sort(near_.begin() + static_cast<std::ptrdiff_t>(begin), near_.end(),
             [&](std::uint32_t i, std::uint32_t j) { return id[i] < id[j]; });

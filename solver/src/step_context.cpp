@@ -20,7 +20,7 @@ double StepContext::limit_move(std::uint32_t i, int axis, double d, std::uint32_
   half[v] = bodies.half(v, i);
   broadphase.for_each_in_box(
       bodies, centre[0], centre[1], half[0], half[1], 0.0, [&](std::uint32_t c) {
-        if (c == i || c == follower || (passes && passes(arg, c))) return;
+        if (c == i || c == follower || !bodies.collides(i, c) || (passes && passes(arg, c))) return;
         const double ahead = sign * (bodies.pos(k, c) - from);
         if (ahead <= 0.0) return;  // behind: i moves away from its centre
         const double hi = bodies.half(v, i), hc = bodies.half(v, c);

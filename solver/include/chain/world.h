@@ -99,6 +99,12 @@ struct BodyDef {
   // moving platform is carried as one. Friction never changes a component a drive holds, and moves
   // a body by half the velocity it took, times dt, so a box sliding at v stops after v^2/(2 mu g).
   double friction = 0.0;
+  // Collision filtering, as Box2D's: two bodies collide when each one's category is in the other's
+  // mask ((a.category_bits & b.mask_bits) != 0 and (b.category_bits & a.mask_bits) != 0). Bodies
+  // that do not collide pass through each other: they are never pushed apart, swept against,
+  // carried by one another, nor count as joining a surface (seams). Both variants.
+  std::uint16_t category_bits = 0x0001;
+  std::uint16_t mask_bits = 0xFFFF;
 };
 
 // A world's settings. World's constructor refuses (std::invalid_argument) a definition for which

@@ -81,6 +81,8 @@ void Box2dWorld::add_body(std::size_t i) {
   fixture.density = 0.0f;  // mass is set exactly below
   fixture.friction = static_cast<float>(scene.friction_of(sb));
   fixture.restitution = static_cast<float>(scene.restitution_of(sb));
+  fixture.filter.categoryBits = sb.category_bits;
+  fixture.filter.maskBits = sb.mask_bits;
   body->CreateFixture(&fixture);
   if (sb.kind == BodyKind::kDynamic) {
     b2MassData mass;

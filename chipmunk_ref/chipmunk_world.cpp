@@ -114,6 +114,8 @@ void ChipmunkWorld::add_body(std::size_t i) {
   cpShape* shape = cpSpaceAddShape(space, cpBoxShapeNew2(body, cpBBNew(-gx, -gy, gx, gy), 0.0));
   cpShapeSetFriction(shape, scene_.friction_of(b));
   cpShapeSetElasticity(shape, scene_.restitution_of(b));
+  // Chipmunk's filter rule is Box2D's: each one's categories in the other's mask.
+  cpShapeSetFilter(shape, cpShapeFilterNew(CP_NO_GROUP, b.category_bits, b.mask_bits));
   if (b.kind == BodyKind::kStatic) cpSpaceReindexShapesForBody(space, body);
   bodies_[i] = body;
   shapes_[i] = shape;

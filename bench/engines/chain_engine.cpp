@@ -96,6 +96,8 @@ class ChainEngine final : public Engine {
     def.velocity = {b.velocity.x, b.velocity.y};
     def.mass = b.mass;
     def.gravity_scale = b.gravity_scale;
+    def.category_bits = b.category_bits;
+    def.mask_bits = b.mask_bits;
     def.restitution = scene_.restitution_of(b);
     def.friction = scene_.friction_of(b);
     ids_[i] = world_.create_body(def);
@@ -257,6 +259,7 @@ EngineDef register_chain() {
     c.kinematic = true;
     c.axis_drives = true;
     c.lifetimes = true;
+    c.filtering = true;
     c.friction = spec.get("variant") == "modern";         // the 2014 engine had none
     c.restitution = spec.get("velocity") == "inelastic";  // the zero rule stops, never bounces
     return c;

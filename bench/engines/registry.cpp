@@ -106,6 +106,10 @@ std::string missing_capability(const EngineSpec& spec, const Scene& scene) {
     if (!can.kinematic && b.kind == BodyKind::kKinematic) {
       return who + " has no kinematic bodies, and " + at + " is one";
     }
+    if (!can.filtering && (b.category_bits != 0x0001 || b.mask_bits != 0xFFFF)) {
+      return who + " cannot filter collisions, and " + at + " has category_bits " +
+             std::to_string(b.category_bits) + " and mask_bits " + std::to_string(b.mask_bits);
+    }
     if (!can.lifetimes && b.comes_or_goes()) {
       return who + " cannot add or remove bodies during a run, and " + at + " " +
              (b.from_step > 0 ? "enters at step " + std::to_string(b.from_step)

@@ -109,6 +109,7 @@ PairOverlap deepest_among(const Scene& scene, const Expectation& e, const BodySt
       const std::size_t i = std::min(e.bodies[m], e.bodies[n]);
       const std::size_t k = std::max(e.bodies[m], e.bodies[n]);
       if (!scene.bodies[i].alive(state) || !scene.bodies[k].alive(state)) continue;
+      if (!scene.collide(i, k)) continue;  // they pass through each other by design
       const Extent2 a = extent(scene, s, i), b = extent(scene, s, k);
       const Vec2d sep = separation(a, b);
       const double depth = !a.finite || !b.finite       ? kInf

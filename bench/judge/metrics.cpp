@@ -81,6 +81,7 @@ MetricsRecorder::MetricsRecorder(const Scene& scene, MetricSelection selection)
       scene_(scene),
       presence_(scene),
       lives_(presence_.any()),
+      filters_(scene.filters()),
       dt_(scene.dt),
       bounds_(motion_bounds(scene)),
       cache_(scene),

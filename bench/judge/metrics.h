@@ -184,6 +184,7 @@ class MetricsRecorder {
   const Scene& scene_;
   Presence presence_;
   bool lives_ = false;                 // some body comes or goes (presence_.any())
+  bool filters_ = false;               // some pairs do not collide (Scene::filters())
   std::vector<std::size_t> left_out_;  // bodies that escaped before they left, ascending
   double dt_;
   MotionBounds bounds_;

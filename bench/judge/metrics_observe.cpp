@@ -283,6 +283,7 @@ void MetricsRecorder::visit(const BodyState& before, const BodyState& after, std
   // and the one entering in its place); one that entered in the step passed through nothing in
   // it (it was not in the state before).
   if (lives_ && !meet(scene_.bodies[i], scene_.bodies[j], step)) return;
+  if (filters_ && !scene_.collide(i, j)) return;  // they pass through each other by design
   if (sel_.stability && stepped(i) && stepped(j)) tunnels_.check(before, after, i, j, step);
   const double d = scan().depth(after, i, j);
   const Vec2d hi = scan().half(i), hj = scan().half(j);

@@ -52,13 +52,26 @@ Floor find_floor(const Scene& scene, double sideways, double lift, double sunk) 
     hi = std::max(hi, across(b.center) + half_across(b));
   }
   if (!any) return none;
-  // The highest floor: a static box under every dynamic one that reaches past them on both sides
-  // by more than any of them can travel sideways in the run.
+  // The highest floor: a static box under every dynamic one, colliding with each of them, that
+  // reaches past them on both sides by more than any of them can travel sideways in the run.
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> filters;  // the dynamic bodies' kinds
+  if (scene.filters()) {
+    for (const SceneBody& b : scene.bodies)
+      if (b.kind == BodyKind::kDynamic) filters.emplace_back(b.category_bits, b.mask_bits);
+    std::sort(filters.begin(), filters.end());
+    filters.erase(std::unique(filters.begin(), filters.end()), filters.end());
+  }
+  auto catches_all = [&](const SceneBody& f) {
+    return std::all_of(filters.begin(), filters.end(), [&](const auto& b) {
+      return (f.category_bits & b.second) != 0 && (b.first & f.mask_bits) != 0;
+    });
+  };
   double ground = inf;
   const double rounding = 1e-9 * (1.0 + std::abs(bottom));
   for (const SceneBody& f : scene.bodies) {
     if (f.kind != BodyKind::kStatic) continue;
     if (f.from_step > 0 || f.to_step < scene.steps) continue;  // not there the whole run
+    if (!catches_all(f)) continue;                             // some body passes through it
     const double top = depth(f.center) - half_depth(f);
     if (top < bottom - sunk - rounding || top >= ground) continue;
     if (across(f.center) - half_across(f) > lo - sideways ||

@@ -257,6 +257,12 @@ std::vector<SceneIssue> validate(const Scene& s) {
   return c.issues;
 }
 
+bool Scene::filters() const {
+  return std::any_of(bodies.begin(), bodies.end(), [](const SceneBody& b) {
+    return b.category_bits != 0x0001 || b.mask_bits != 0xFFFF;
+  });
+}
+
 bool Scene::has_lifetimes() const {
   return std::any_of(bodies.begin(), bodies.end(),
                      [](const SceneBody& b) { return b.comes_or_goes(); });

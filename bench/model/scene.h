@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -32,6 +33,10 @@ struct SceneBody {
   // What another box may overlap this one, m, before the run is `penetrating`; see
   // pair_penetration_tolerance(). (Initialised so that brace lists of the fields above stay whole.)
   std::optional<double> penetration_tolerance = std::nullopt;
+  // Collision filtering (Box2D's rule): two bodies collide when each one's category is in the
+  // other's mask; pairs that do not collide pass through each other and are never judged.
+  std::uint16_t category_bits = 0x0001;
+  std::uint16_t mask_bits = 0xFFFF;
   // Its life: it takes part in steps n with from_step <= n < to_step, so it exists in states
   // from_step..to_step. It enters as center and velocity say, and leaves after step to_step - 1.
   int from_step = 0;
@@ -124,6 +129,13 @@ struct Scene {
   // bodies' own tolerances where either has one (each body's is a promise about that body, so a
   // pair keeps both), else the scene's, else 0.1 x the smallest of the two boxes' half extents.
   double pair_penetration_tolerance(std::size_t i, std::size_t j) const;
+  // Whether bodies i and j collide (SceneBody::category_bits, mask_bits).
+  bool collide(std::size_t i, std::size_t j) const {
+    const SceneBody &a = bodies[i], &b = bodies[j];
+    return (a.category_bits & b.mask_bits) != 0 && (b.category_bits & a.mask_bits) != 0;
+  }
+  // Whether some body filters (has category or mask bits other than 1 and 0xFFFF).
+  bool filters() const;
   bool has_gravity() const { return gravity.x != 0.0 || gravity.y != 0.0; }
   // Whether some body enters after the start or leaves before the end (SceneBody::from_step).
   bool has_lifetimes() const;

@@ -267,7 +267,8 @@ void read_body(Reader& r, const json& j, const std::string& at, std::size_t inde
   }
   r.only_keys(j, at,
               {"name", "type", "center", "half_extents", "mass", "density", "velocity", "friction",
-               "restitution", "gravity_scale", "penetration_tolerance", "from_step", "to_step"});
+               "restitution", "gravity_scale", "penetration_tolerance", "from_step", "to_step",
+               "category_bits", "mask_bits"});
   b.name = "body" + std::to_string(index);
   if (j.contains("name")) r.string(j["name"], at + ".name", b.name);
   std::string type;
@@ -296,6 +297,12 @@ void read_body(Reader& r, const json& j, const std::string& at, std::size_t inde
     r.integer(j["from_step"], at + ".from_step", 0, limits::kMaxSteps, b.from_step);
   if (j.contains("to_step"))
     r.integer(j["to_step"], at + ".to_step", 1, limits::kMaxSteps, b.to_step);
+  for (const auto& [key, bits] :
+       {std::pair{"category_bits", &b.category_bits}, std::pair{"mask_bits", &b.mask_bits}}) {
+    int value = 0;
+    if (j.contains(key) && r.integer(j[key], at + "." + key, 0, 0xFFFF, value))
+      *bits = static_cast<std::uint16_t>(value);
+  }
   double v = 0.0;
   if (j.contains("friction") && r.number(j["friction"], at + ".friction", v)) b.friction = v;
   if (j.contains("restitution") && r.number(j["restitution"], at + ".restitution", v))

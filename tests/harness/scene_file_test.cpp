@@ -25,7 +25,8 @@ const char* kValid = R"({
   "bodies": [
     {"name": "player", "type": "dynamic", "center": [0, 0], "half_extents": [0.5, 0.5], "mass": 1},
     {"name": "box1",   "type": "dynamic", "center": [1, 0], "half_extents": [0.5, 0.5], "density": 2,
-     "friction": 0.3, "restitution": 0.2, "gravity_scale": 0.5, "velocity": [0.1, 0]},
+     "friction": 0.3, "restitution": 0.2, "gravity_scale": 0.5, "velocity": [0.1, 0],
+     "category_bits": 4, "mask_bits": 65531},
     {"name": "wall",   "type": "static",  "center": [5, 0], "half_extents": [0.5, 2]},
     {"name": "lift",   "type": "kinematic", "center": [0, 3], "half_extents": [2, 0.5], "velocity": [0, -1]}
   ],
@@ -166,6 +167,13 @@ TEST(SceneFile, ValidFileReadsAsWritten) {
   EXPECT_EQ(s.bodies[1].mass, 2.0 * 1.0);  // density 2 over a 1 m^2 box
   EXPECT_EQ(*s.bodies[1].friction, 0.3);
   EXPECT_EQ(s.bodies[1].gravity_scale, 0.5);
+  EXPECT_EQ(s.bodies[1].category_bits, 0x0004);
+  EXPECT_EQ(s.bodies[1].mask_bits, 0xFFFB);
+  EXPECT_EQ(s.bodies[0].category_bits, 0x0001);  // the defaults: collide with everything
+  EXPECT_EQ(s.bodies[0].mask_bits, 0xFFFF);
+  EXPECT_TRUE(s.filters());
+  EXPECT_FALSE(s.collide(1, 1));
+  EXPECT_TRUE(s.collide(0, 1));
   EXPECT_EQ(s.bodies[3].kind, BodyKind::kKinematic);
   EXPECT_EQ(s.bodies[3].velocity.y, -1.0);
   ASSERT_EQ(s.drivers.size(), 1u);
@@ -244,6 +252,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"NotJson", "{\"bodies\": [", "", "not valid JSON"},
         BadFile{"RootNotObject", "[1, 2]", "(root)", "must be an object"},
         BadFile{"UnknownTopKey", edited("\"steps\": 60", "\"step\": 60"), "step", "unknown key"},
+        BadFile{"CategoryPast16Bits",
+                edited("\"mass\": 1}", "\"mass\": 1, \"category_bits\": 65536}"),
+                "bodies[0].category_bits", "65535"},
+        BadFile{"MaskNegative", edited("\"mass\": 1}", "\"mass\": 1, \"mask_bits\": -1}"),
+                "bodies[0].mask_bits", "0"},
+        BadFile{"MaskNotWhole", edited("\"mass\": 1}", "\"mask_bits\": 1.5, \"mass\": 1}"),
+                "bodies[0].mask_bits", "whole"},
+        BadFile{"CategoryAsString",
+                edited("\"mass\": 1}", "\"mass\": 1, \"category_bits\": \"0x2\"}"),
+                "bodies[0].category_bits", "string"},
         BadFile{"UnknownBodyKey", edited("\"mass\": 1}", "\"mass\": 1, \"colour\": 3}"),
                 "bodies[0].colour", "unknown key"},
         BadFile{"UnknownDriverKey", edited("\"from_step\": 0", "\"start\": 0"), "drivers[0].start",

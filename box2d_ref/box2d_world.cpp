@@ -27,6 +27,34 @@ b2Vec2 vec(Vec2d v) {
 
 }  // namespace
 
+namespace {
+
+// A conveyor's contacts: the tangent speed that makes friction drive the bodies' relative
+// velocity along the contact's tangent to the belts' (Box2D solves dot(vB - vA, t) toward it,
+// t the normal from A to B turned clockwise), dot(sA - sB, t).
+class Belts final : public b2ContactListener {
+ public:
+  explicit Belts(const Scene& scene) : scene_(scene) {}
+  void PreSolve(b2Contact* contact, const b2Manifold*) override {
+    const Vec2d a = belt(contact->GetFixtureA()), b = belt(contact->GetFixtureB());
+    if (a.x == b.x && a.y == b.y) return;
+    b2WorldManifold m;
+    contact->GetWorldManifold(&m);
+    const double tx = m.normal.y, ty = -m.normal.x;
+    contact->SetTangentSpeed(static_cast<float>((a.x - b.x) * tx + (a.y - b.y) * ty));
+  }
+
+ private:
+  Vec2d belt(b2Fixture* f) const {
+    return scene_.bodies[f->GetBody()->GetUserData().pointer].surface_velocity;
+  }
+  const Scene& scene_;
+};
+
+}  // namespace
+
+Box2dWorld::~Box2dWorld() = default;
+
 double Box2dWorld::max_translation() {
   return static_cast<double>(b2_maxTranslation);
 }
@@ -36,7 +64,8 @@ double Box2dWorld::skin_shrink() {
 }
 
 Box2dWorld::Box2dWorld(const Scene& scene, const Box2dSettings& settings)
-    : world_(std::make_unique<b2World>(vec(scene.gravity))),
+    : belts_(scene.has_belts() ? std::make_unique<Belts>(scene) : nullptr),
+      world_(std::make_unique<b2World>(vec(scene.gravity))),
       scene_(scene),
       drives_(scene),
       dt_(scene.dt),
@@ -46,6 +75,7 @@ Box2dWorld::Box2dWorld(const Scene& scene, const Box2dSettings& settings)
     throw std::invalid_argument("Box2dWorld: iterations, substeps or continuous out of range");
   }
   world_->SetAllowSleeping(settings.sleep);
+  if (belts_) world_->SetContactListener(belts_.get());
   world_->SetContinuousPhysics(settings.continuous >= 1);
   world_->SetWarmStarting(settings.warm_starting);
   bodies_.assign(scene.bodies.size(), nullptr);
@@ -66,6 +96,7 @@ void Box2dWorld::add_body(std::size_t i) {
   def.allowSleep = settings.sleep;
   def.bullet = settings.continuous >= 2 && sb.kind == BodyKind::kDynamic;
   def.gravityScale = static_cast<float>(sb.gravity_scale);
+  def.userData.pointer = i;  // the scene body, for the belts' listener
   b2Body* body = world_->CreateBody(&def);
 
   // Compensation never takes a box below half its declared size (boxes under 1.5 cm).
@@ -99,8 +130,6 @@ void Box2dWorld::remove_body(std::size_t i) {
   world_->DestroyBody(bodies_[i]);
   bodies_[i] = nullptr;
 }
-
-Box2dWorld::~Box2dWorld() = default;
 
 void Box2dWorld::step(int step_index) {
   // A driver sets the velocity at the start of the scene step only, as the scene format defines

@@ -18,6 +18,7 @@
 #include <vector>
 
 class b2World;
+class b2ContactListener;
 class b2Body;
 
 namespace chainbench {
@@ -69,6 +70,9 @@ class Box2dWorld {
   void remove_body(std::size_t i);
 
  private:
+  // Conveyors (SceneBody::surface_velocity): sets each touching contact's tangent speed before
+  // it is solved; null when the scene has none. Declared before world_, so it outlives it.
+  std::unique_ptr<b2ContactListener> belts_;
   std::unique_ptr<b2World> world_;
   const Scene& scene_;           // outlives the world
   std::vector<b2Body*> bodies_;  // per scene body, null while it is not in the world

@@ -116,6 +116,8 @@ void ChipmunkWorld::add_body(std::size_t i) {
   cpShapeSetElasticity(shape, scene_.restitution_of(b));
   // Chipmunk's filter rule is Box2D's: each one's categories in the other's mask.
   cpShapeSetFilter(shape, cpShapeFilterNew(CP_NO_GROUP, b.category_bits, b.mask_bits));
+  // Chipmunk's surface velocity is the belt's: friction drives what touches it to move with it.
+  cpShapeSetSurfaceVelocity(shape, cpv(b.surface_velocity.x, b.surface_velocity.y));
   if (b.kind == BodyKind::kStatic) cpSpaceReindexShapesForBody(space, body);
   bodies_[i] = body;
   shapes_[i] = shape;

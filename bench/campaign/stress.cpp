@@ -162,6 +162,9 @@ std::vector<StressCase> stress_cases() {
   add("level", "gap_cross", {"gap=0.95", "speed=8"}, false);
   add("level", "gap_cross", {"edge=0.25", "gap=0.25", "speed=30"}, false);
   add("level", "gap_cross", {"gap=1.5", "speed=8", "driven=0"}, false);
+  // Conveyors: a crate set down on a running belt slips, then rides.
+  add("level", "conveyor", {}, true);
+  add("level", "conveyor", {"speed=-5", "mu=0.5", "steps=120"}, false);
   // Collision filtering: a character walks through crates it does not collide with.
   add("level", "filter_walk", {}, true);
   add("level", "filter_walk", {"speed=20"}, false);

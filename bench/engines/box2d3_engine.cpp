@@ -115,6 +115,9 @@ class Box2d3Engine final : public Engine {
     shape.material.friction = static_cast<float>(scene_.friction_of(sb));
     shape.material.restitution = static_cast<float>(scene_.restitution_of(sb));
     shape.filter.categoryBits = sb.category_bits;
+    // v3's tangent speed runs along each contact's tangent (the normal turned clockwise): on the
+    // top face that is +x, the belt's direction (scene belts run along x only).
+    shape.material.tangentSpeed = static_cast<float>(sb.surface_velocity.x);
     shape.filter.maskBits = sb.mask_bits;
     // The shape updates the body's mass (then set exactly below) so that v3 also learns the
     // body's extent: without it a body's minExtent stays huge, no body is ever fast and
@@ -237,7 +240,7 @@ EngineDef register_box2d3() {
       whole_key("warm", 1, 0, 1, "warm starting"),
       number_key("max_speed", 400.0, 0.01, 1e6, "speed limit of every body, m/s")};
   e.capabilities = [](const EngineSpec&) {
-    return Capabilities{true, true, true, true, true, true, true};
+    return Capabilities{true, true, true, true, true, true, true, true};
   };
   e.counters = counter_list();
   e.defaults = {"box2d3"};

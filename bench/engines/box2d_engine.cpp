@@ -76,7 +76,7 @@ EngineDef register_box2d() {
                       "(Box2D's default), 2 every dynamic body a bullet"),
             whole_key("sleep", 0, 0, 1, "bodies at rest fall asleep, as games ship it")};
   e.capabilities = [](const EngineSpec&) {
-    return Capabilities{true, true, true, true, true, true, true};
+    return Capabilities{true, true, true, true, true, true, true, true};
   };
   e.counters = counter_list();
   e.defaults = {"box2d"};

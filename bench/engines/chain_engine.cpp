@@ -97,6 +97,7 @@ class ChainEngine final : public Engine {
     def.mass = b.mass;
     def.gravity_scale = b.gravity_scale;
     def.category_bits = b.category_bits;
+    def.surface_velocity = {b.surface_velocity.x, b.surface_velocity.y};
     def.mask_bits = b.mask_bits;
     def.restitution = scene_.restitution_of(b);
     def.friction = scene_.friction_of(b);
@@ -260,7 +261,8 @@ EngineDef register_chain() {
     c.axis_drives = true;
     c.lifetimes = true;
     c.filtering = true;
-    c.friction = spec.get("variant") == "modern";         // the 2014 engine had none
+    c.belts = spec.get("variant") == "modern";     // friction's, which the 2014 engine had not
+    c.friction = spec.get("variant") == "modern";  // the 2014 engine had none
     c.restitution = spec.get("velocity") == "inelastic";  // the zero rule stops, never bounces
     return c;
   };

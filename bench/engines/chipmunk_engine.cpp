@@ -60,7 +60,7 @@ EngineDef register_chipmunk() {
                  "compensate: shapes built slop/2 larger per side so boxes rest at their faces"),
       whole_key("sleep", 0, 0, 1, "bodies at rest fall asleep, as games ship it")};
   e.capabilities = [](const EngineSpec&) {
-    return Capabilities{true, true, true, true, true, true, true};
+    return Capabilities{true, true, true, true, true, true, true, true};
   };
   e.counters = counter_list();
   e.caveat =

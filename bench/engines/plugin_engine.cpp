@@ -349,7 +349,8 @@ EngineDef register_plugin() {
     c.kinematic = (can & CB_CAN_KINEMATIC) != 0;
     c.axis_drives = (can & CB_CAN_AXIS_DRIVES) != 0;
     c.lifetimes = (can & CB_CAN_LIFETIMES) != 0;  // with add_body and remove_body (check_table)
-    c.filtering = false;  // cb_body (ABI 2) carries no filter bits: such scenes are refused
+    c.filtering = false;  // cb_body (ABI 2) carries no filter bits nor belts: such scenes are
+    c.belts = false;      // refused
     return c;
   };
   e.make = [](const EngineSpec& spec, const Scene& scene) -> std::unique_ptr<Engine> {

@@ -110,6 +110,10 @@ std::string missing_capability(const EngineSpec& spec, const Scene& scene) {
       return who + " cannot filter collisions, and " + at + " has category_bits " +
              std::to_string(b.category_bits) + " and mask_bits " + std::to_string(b.mask_bits);
     }
+    if (!can.belts && (b.surface_velocity.x != 0.0 || b.surface_velocity.y != 0.0)) {
+      return who + " has no conveyors, and " + at + " has surface_velocity " +
+             exact_number(b.surface_velocity.x);
+    }
     if (!can.lifetimes && b.comes_or_goes()) {
       return who + " cannot add or remove bodies during a run, and " + at + " " +
              (b.from_step > 0 ? "enters at step " + std::to_string(b.from_step)

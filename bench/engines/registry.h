@@ -53,6 +53,7 @@ struct Capabilities {
   bool axis_drives = false;  // a driver that holds one axis and leaves the other free
   bool lifetimes = false;    // bodies added and removed during a run (SceneBody::from_step)
   bool filtering = false;    // collision filtering (SceneBody::category_bits, mask_bits)
+  bool belts = false;        // conveyors (SceneBody::surface_velocity)
 };
 
 // A limit an engine imposes on every world it builds, whatever the scene asks: Box2D 2.4 moves no

@@ -118,6 +118,14 @@ MotionBounds motion_bounds(const Scene& scene) {
       lift = std::max(lift, rise(b.velocity));
       pumped = pumped || speed > 0.0;
     }
+    if (b.kind != BodyKind::kDynamic) {
+      // A conveyor's belt drags what touches it up to its own speed on top of its body's.
+      const double belt = std::hypot(b.surface_velocity.x, b.surface_velocity.y);
+      drive = std::max(drive, speed + belt);
+      lift = std::max(
+          lift, rise({b.velocity.x + b.surface_velocity.x, b.velocity.y + b.surface_velocity.y}));
+      pumped = pumped || belt > 0.0;
+    }
     if (b.kind != BodyKind::kDynamic) continue;
     fastest = std::max(fastest, speed);
     largest = std::max(largest, std::hypot(b.half_extents.x, b.half_extents.y));

@@ -263,6 +263,12 @@ bool Scene::filters() const {
   });
 }
 
+bool Scene::has_belts() const {
+  return std::any_of(bodies.begin(), bodies.end(), [](const SceneBody& b) {
+    return b.surface_velocity.x != 0.0 || b.surface_velocity.y != 0.0;
+  });
+}
+
 bool Scene::has_lifetimes() const {
   return std::any_of(bodies.begin(), bodies.end(),
                      [](const SceneBody& b) { return b.comes_or_goes(); });

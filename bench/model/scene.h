@@ -37,6 +37,9 @@ struct SceneBody {
   // other's mask; pairs that do not collide pass through each other and are never judged.
   std::uint16_t category_bits = 0x0001;
   std::uint16_t mask_bits = 0xFFFF;
+  // A conveyor's belt (static and kinematic bodies): friction acts on what touches it as if its
+  // surface moved at this on top of the body's own velocity, m/s; the scene file allows [vx, 0].
+  Vec2d surface_velocity = Vec2d{};
   // Its life: it takes part in steps n with from_step <= n < to_step, so it exists in states
   // from_step..to_step. It enters as center and velocity say, and leaves after step to_step - 1.
   int from_step = 0;
@@ -136,6 +139,8 @@ struct Scene {
   }
   // Whether some body filters (has category or mask bits other than 1 and 0xFFFF).
   bool filters() const;
+  // Whether some body is a conveyor (has a surface_velocity).
+  bool has_belts() const;
   bool has_gravity() const { return gravity.x != 0.0 || gravity.y != 0.0; }
   // Whether some body enters after the start or leaves before the end (SceneBody::from_step).
   bool has_lifetimes() const;

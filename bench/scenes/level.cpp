@@ -252,6 +252,27 @@ Scene rough_slide(const SceneParams& p) {
   return s;
 }
 
+// A crate set down at rest on a static conveyor whose belt runs at `speed`: friction mu
+// accelerates it at mu g until it moves with the belt, so it slips v^2 / (2 mu g) and rides on
+// (as on a platform moving at v, platform_ride), within one step's travel. Frictionless, it stays.
+Scene conveyor(const SceneParams& p) {
+  Scene s;
+  s.name = "conveyor";
+  const double v = p.get("speed"), mu = p.get("mu"), g = 10.0;
+  const std::size_t belt = box(s, "belt", BodyKind::kStatic, {0.0, -0.25}, {20.0, 0.25});
+  s.bodies[belt].surface_velocity = {v, 0.0};
+  s.bodies[belt].friction = mu;
+  const std::size_t c = box(s, "crate", BodyKind::kDynamic, {-10.0, 0.25}, {0.25, 0.25}, 1.0);
+  s.bodies[c].friction = mu;
+  const double t = p.get("dt") * p.count("steps");
+  const double catch_up = mu > 0 ? std::abs(v) / (mu * g) : t;
+  const double moved = t >= catch_up ? v * t - std::copysign(v * v / (2.0 * mu * g), v)
+                                     : std::copysign(0.5 * mu * g * t * t, v);
+  if (std::abs(-10.0 + moved) <= 20.0 - 0.25)  // still on the belt
+    s.expect.push_back(build::expect_moved(c, {moved, 0.0}, one_step_slip(v, p.get("dt"))));
+  return s;
+}
+
 std::size_t three(const SceneParams&) {
   return 3;
 }
@@ -323,6 +344,14 @@ std::vector<SceneRecipe> level_scenes() {
        gap_cross,
        four,
        180},
+      {"conveyor",
+       "level",
+       "a crate set down on a running conveyor belt: it slips, then rides at the belt's speed",
+       {{"speed", 2, -100, 100, false, "belt speed along x, m/s"},
+        {"mu", 1, 0, 10, false, "friction of crate and belt"}},
+       conveyor,
+       two,
+       60},
       {"filter_walk",
        "level",
        "a character walking through crates it does not collide with (filtering), to a wall",

@@ -268,7 +268,7 @@ void read_body(Reader& r, const json& j, const std::string& at, std::size_t inde
   r.only_keys(j, at,
               {"name", "type", "center", "half_extents", "mass", "density", "velocity", "friction",
                "restitution", "gravity_scale", "penetration_tolerance", "from_step", "to_step",
-               "category_bits", "mask_bits"});
+               "category_bits", "mask_bits", "surface_velocity"});
   b.name = "body" + std::to_string(index);
   if (j.contains("name")) r.string(j["name"], at + ".name", b.name);
   std::string type;
@@ -302,6 +302,19 @@ void read_body(Reader& r, const json& j, const std::string& at, std::size_t inde
     int value = 0;
     if (j.contains(key) && r.integer(j[key], at + "." + key, 0, 0xFFFF, value))
       *bits = static_cast<std::uint16_t>(value);
+  }
+  if (j.contains("surface_velocity") &&
+      r.vec2(j["surface_velocity"], at + ".surface_velocity", b.surface_velocity)) {
+    if (b.surface_velocity.y != 0.0) {
+      r.problem(at + ".surface_velocity[1]",
+                "must be 0: a belt runs along x, got " + number_text(j["surface_velocity"][1]));
+    } else if (b.kind == BodyKind::kDynamic && b.surface_velocity.x != 0.0) {
+      r.problem(at + ".surface_velocity",
+                "is for static and kinematic bodies (conveyors), not a dynamic one");
+    } else if (std::abs(b.surface_velocity.x) > 1e6) {
+      r.problem(at + ".surface_velocity[0]",
+                "must be within +-1e6 m/s, got " + number_text(j["surface_velocity"][0]));
+    }
   }
   double v = 0.0;
   if (j.contains("friction") && r.number(j["friction"], at + ".friction", v)) b.friction = v;

@@ -78,7 +78,9 @@ auto state_fields(const Bodies& b, std::uint32_t i, std::span<const Origin> orig
                     order_key(b.gravity_scale[i]), order_key(b.restitution[i]),
                     order_key(b.friction[i]), b.driven[i], order_key(b.drive_x[i]),
                     order_key(b.drive_y[i]), (b.filter.empty() ? Bodies::kNoFilter : b.filter[i]),
-                    order_key(o.cy), order_key(o.cx), order_key(o.vx), order_key(o.vy), b.id[i]);
+                    order_key(b.surface.empty() ? 0.0 : b.surface[i].x),
+                    order_key(b.surface.empty() ? 0.0 : b.surface[i].y), order_key(o.cy),
+                    order_key(o.cx), order_key(o.vx), order_key(o.vy), b.id[i]);
 }
 
 }  // namespace
@@ -110,6 +112,11 @@ void Bodies::append(const BodyDef& def, std::uint32_t body_id) {
   if (!filter.empty() || f != kNoFilter) {
     if (filter.empty()) filter.assign(id.size() - 1, kNoFilter);  // the first body that filters
     push_buffer(filter, f);
+  }
+  const Point s{def.surface_velocity.x, def.surface_velocity.y};
+  if (!surface.empty() || s.x != 0.0 || s.y != 0.0) {
+    if (surface.empty()) surface.assign(id.size() - 1, Point{0.0, 0.0});
+    push_buffer(surface, s);
   }
 }
 

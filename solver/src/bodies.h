@@ -74,6 +74,8 @@ struct Bodies {
   // that filters nothing holds nothing for it.
   std::vector<std::uint32_t> filter;
   static constexpr std::uint32_t kNoFilter = 0xFFFF0001u;
+  // BodyDef::surface_velocity: empty while no body has one, as filter.
+  std::vector<Point> surface;
 
   // Valid after canonicalize(): slots [0, dynamic_end) are dynamic, [dynamic_end, movable_end)
   // kinematic and the rest static.
@@ -114,6 +116,7 @@ struct Bodies {
     fn(box), fn(vx), fn(vy), fn(mass), fn(gravity_scale), fn(restitution), fn(friction);
     fn(drive_x), fn(drive_y), fn(driven), fn(start), fn(touching), fn(type), fn(id);
     if (!filter.empty()) fn(filter);
+    if (!surface.empty()) fn(surface);
   }
 
   void append(const BodyDef& def, std::uint32_t body_id);

@@ -14,6 +14,18 @@ constexpr std::uint32_t kUnnumbered = 0xffffffffu;  // local_ of a slot no link 
 
 }  // namespace
 
+namespace {
+
+// The velocity along axis t friction sees at body i's surface: its own, and a conveyor's belt on
+// top of it (BodyDef::surface_velocity).
+double surface_speed(const Bodies& bodies, std::uint32_t i, int t) {
+  const double v = t == 0 ? bodies.vx[i] : bodies.vy[i];
+  if (bodies.surface.empty()) return v;
+  return v + (t == 0 ? bodies.surface[i].x : bodies.surface[i].y);
+}
+
+}  // namespace
+
 bool Friction::slides(const Bodies& bodies, const Link& l) {
   const int t = 1 - l.axis;
   const double* v = t == 0 ? bodies.vx.data() : bodies.vy.data();
@@ -21,6 +33,8 @@ bool Friction::slides(const Bodies& bodies, const Link& l) {
   const bool free_a = !bodies.immovable(l.a) && !(bodies.driven[l.a] & held);
   const bool free_b = !bodies.immovable(l.b) && !(bodies.driven[l.b] & held);
   if (!free_a && !free_b) return false;  // nothing friction may change
+  if (!bodies.surface.empty() && surface_speed(bodies, l.a, t) != surface_speed(bodies, l.b, t))
+    return true;
   // Equal velocities give a zero impulse, which still turns a's -0 into +0.
   return v[l.a] != v[l.b] || (v[l.a] == 0.0 && std::signbit(v[l.a]));
 }
@@ -184,7 +198,11 @@ void Friction::apply(Bodies& bodies, Broadphase& broadphase, const std::vector<L
       double* v = t == 0 ? bodies.vx.data() : bodies.vy.data();
       const double inv_a = inverse_mass(l.a, t), inv_b = inverse_mass(l.b, t);
       if (inv_a + inv_b == 0.0) continue;
-      const double wanted = -(v[l.a] - v[l.b]) / (inv_a + inv_b);
+      const double belt = bodies.surface.empty()
+                              ? 0.0
+                              : (t == 0 ? bodies.surface[l.b].x - bodies.surface[l.a].x
+                                        : bodies.surface[l.b].y - bodies.surface[l.a].y);
+      const double wanted = -(v[l.a] - v[l.b] - belt) / (inv_a + inv_b);
       const double total = std::clamp(applied_[k] + wanted, -limit_[k], limit_[k]);
       const double impulse = total - applied_[k];
       applied_[k] = total;

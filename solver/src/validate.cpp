@@ -39,7 +39,11 @@ std::string validate(const BodyDef& def) {
         check_range("velocity.x", def.velocity.x, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s"),
         check_range("velocity.y", def.velocity.y, -kMaxSpeed, kMaxSpeed, "within +-1e6 m/s"),
         check_range("restitution", def.restitution, 0.0, 1.0, "in [0, 1]"),
-        check_range("friction", def.friction, 0.0, kMaxFriction, "in [0, 1e6]")}) {
+        check_range("friction", def.friction, 0.0, kMaxFriction, "in [0, 1e6]"),
+        check_range("surface_velocity.x", def.surface_velocity.x, -kMaxSpeed, kMaxSpeed,
+                    "within +-1e6 m/s"),
+        check_range("surface_velocity.y", def.surface_velocity.y, -kMaxSpeed, kMaxSpeed,
+                    "within +-1e6 m/s")}) {
     if (!e.empty()) return e;
   }
   if (def.half_extents.x <= 0.0)
@@ -48,6 +52,10 @@ std::string validate(const BodyDef& def) {
     return "half_extents.y must be > 0, got " + number(def.half_extents.y);
   if (def.type == BodyType::kStatic && (def.velocity.x != 0.0 || def.velocity.y != 0.0)) {
     return "velocity must be zero for a static body (make it kinematic to move it)";
+  }
+  if (dynamic && (def.surface_velocity.x != 0.0 || def.surface_velocity.y != 0.0)) {
+    return "surface_velocity is for static and kinematic bodies (conveyors), must be zero for a "
+           "dynamic body";
   }
   if (dynamic) {
     if (!std::isfinite(def.mass) || def.mass <= 0.0 || def.mass > kMaxMass) {

@@ -3,6 +3,7 @@
 // physics says meets them whatever the speed and time step, including a character whose edge
 // reaches the ledge exactly at a step and a friction stop shorter than one step's travel.
 #include "engines/engine_spec.h"
+#include "engines/registry.h"
 #include "run/runner.h"
 #include "scenes/scene_library.h"
 
@@ -80,6 +81,48 @@ TEST(LevelAnswers, GapCrossingIsMetAtEverySpeedAndStep) {
   EXPECT_GT(falls, 20);
   EXPECT_FALSE(meets("box2d", "gap_cross", {}));
   EXPECT_FALSE(meets("chipmunk", "gap_cross", {"gap=0", "speed=1", "driven=0"}));
+}
+
+// A crate set down on a running belt slips v^2 / (2 mu g) and rides at the belt's speed: every
+// built-in engine meets it, each through its own conveyor (the chain solver's surface velocity,
+// Box2D 2.4's tangent speed set before each contact is solved, Chipmunk's surface velocity, v3's
+// tangent speed), at belt speeds either way and two coefficients; and nothing judges the belt's
+// work unstable. Plugins, whose ABI carries no belts, are refused by name.
+TEST(LevelAnswers, ConveyorsCarryCratesInEveryEngine) {
+  int engines = 0;
+  for (const EngineDef& def : engine_registry()) {
+    if (def.name == "plugin") continue;
+    ++engines;
+    for (const char* speed : {"2", "-5"}) {
+      for (const char* mu : {"0.5", "1"}) {
+        const std::vector<std::string> sets = {std::string("speed=") + speed,
+                                               std::string("mu=") + mu, "steps=120"};
+        const Scene s = make_scene("conveyor", sets);
+        ASSERT_EQ(s.expect.size(), 1u);
+        const EngineRun r = run_engine(s, parse_engine_spec(def.name), RunOptions{});
+        SCOPED_TRACE(def.name + " speed=" + speed + " mu=" + mu);
+        ASSERT_TRUE(r.expect && r.verdict);
+        EXPECT_TRUE(r.expect->pass);
+        EXPECT_EQ(r.verdict->worst, VerdictClass::kOk) << to_string(r.verdict->worst);
+      }
+    }
+  }
+  EXPECT_GE(engines, 3);
+  // Without friction the belt runs under the crate, and the answer for friction is missed.
+  Scene s = make_scene("conveyor", {});
+  for (SceneBody& b : s.bodies)
+    b.friction = 0.0;
+  const EngineRun r = run_engine(s, parse_engine_spec("chain"), RunOptions{});
+  ASSERT_TRUE(r.expect);
+  EXPECT_FALSE(r.expect->pass);
+  const std::string why =
+      missing_capability(parse_engine_spec("plugin:path=" CHAINBENCH_RELAXATION_PLUGIN),
+                         make_scene("conveyor", {"mu=0"}));
+  EXPECT_NE(why.find("has no conveyors"), std::string::npos) << why;
+  EXPECT_NE(missing_capability(parse_engine_spec("chain:variant=seed2014"),
+                               make_scene("conveyor", {"mu=0"}))
+                .find("no conveyors"),
+            std::string::npos);
 }
 
 // The bound still catches a wrong answer: a frictionless crate on a moving platform stays

@@ -105,6 +105,11 @@ struct BodyDef {
   // carried by one another, nor count as joining a surface (seams). Both variants.
   std::uint16_t category_bits = 0x0001;
   std::uint16_t mask_bits = 0xFFFF;
+  // A conveyor: static and kinematic bodies only (else zero), m/s, components within kMaxSpeed.
+  // Friction acts on what touches the body as if its surface moved at this velocity on top of the
+  // body's own (a belt): a crate resting on a static belt of surface velocity (v, 0) slips until
+  // it moves at v, as on a platform moving at v. Push-out is unchanged. Modern variant only.
+  Vec2 surface_velocity;
 };
 
 // A world's settings. World's constructor refuses (std::invalid_argument) a definition for which

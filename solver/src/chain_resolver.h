@@ -85,6 +85,9 @@ class ChainResolver {
   };
 
   void gather_contacts(StepContext& ctx);
+  // The contacts of stale body i (filed again since the near pairs were taken) into `out`: each
+  // with a body before it or not stale, as its lower body, then its higher.
+  void add_refiled_pairs(const StepContext& ctx, std::uint32_t i, std::vector<Pair>& out) const;
   void gather_suspect_contacts(StepContext& ctx);
   void order_contacts(StepContext& ctx);
   // Orders each body's contacts with immovable bodies (among the first `count` of ordered_) by

@@ -121,9 +121,10 @@ void ChainState::begin_chain() {
   const double tol = ctx.def.touch_tolerance;
   const Broadphase& bp = ctx.broadphase;
   const Bodies& b = ctx.bodies;
+  const bool filters = !b.filter.empty();  // read once: the pushes below may reload it each time
   if (bp.stale(around)) {  // filed again since the near pairs were taken: they do not hold for it
     bp.for_each_overlap(b, around, tol, [&](std::uint32_t j) {
-      if (b.collides(around, j)) out.push_back(j);
+      if (!filters || b.collides(around, j)) out.push_back(j);
     });
     std::sort(out.begin() + static_cast<std::ptrdiff_t>(from), out.end());  // as near lists are
     return std::any_of(out.begin() + from, out.end(),
@@ -137,7 +138,7 @@ void ChainState::begin_chain() {
     if (!bp.stale(j)) out.push_back(j);
   });
   bp.for_each_stale_overlap(b, around, tol, [&](std::uint32_t j) {
-    if (b.collides(around, j)) out.push_back(j);
+    if (!filters || b.collides(around, j)) out.push_back(j);
   });
   // In slot order, as the near list alone would give them: the list's hits are, the overlay's
   // come after them in the overlay's order.

@@ -65,8 +65,7 @@ bool face_covered(const StepContext& ctx, std::uint32_t a, std::uint32_t b, int 
 Face entry_face(const StepContext& ctx, std::uint32_t a, std::uint32_t b) {
   const Bodies& bodies = ctx.bodies;
   const double tol = ctx.def.touch_tolerance;
-  const double g[2] = {ctx.def.gravity.x, ctx.def.gravity.y};
-  double entry[2], gap[2], closed[2], sink[2];
+  double entry[2], gap[2], closed[2];
   int side[2];
   bool outside[2];
   for (int k = 0; k < 2; ++k) {
@@ -77,20 +76,25 @@ Face entry_face(const StepContext& ctx, std::uint32_t a, std::uint32_t b) {
     outside[k] = gap[k] >= -tol;
     closed[k] = side[k] * (r0 - r1);
     entry[k] = !outside[k] ? kInside : (closed[k] > 0.0 ? std::max(gap[k], 0.0) / closed[k] : 0.0);
-    // How far one step's gravity moves a towards b along k (0 when it pulls away or across).
-    sink[k] = std::max(-side[k] * g[k] * bodies.gravity_scale[a] * ctx.dt * ctx.dt, 0.0);
   }
+  // How far one step's gravity moves a towards b along k (0 when it pulls away or across); only
+  // the rules below that need it ask.
+  auto sink = [&](int k) {
+    const double g = k == 0 ? ctx.def.gravity.x : ctx.def.gravity.y;
+    return std::max(-side[k] * g * bodies.gravity_scale[a] * ctx.dt * ctx.dt, 0.0);
+  };
   // A face a started level with and closed on by no more than this step's gravity: a slid along it
   // (something held a up at that level until the step began).
-  auto level = [&](int k) { return outside[k] && gap[k] <= tol && closed[k] <= sink[k] + tol; };
+  auto level = [&](int k) { return outside[k] && gap[k] <= tol && closed[k] <= sink(k) + tol; };
   // The same one step later: a face a was level with when the last step began, sunk below by no
   // more than that step's gravity, whose corner a touched along the other axis when this one began
   // (the tolerance hid the corner then) and moves into now. Across a gap exactly as wide as a box,
   // the box ends a step touching both corners and meets the far one only in the next step.
   auto fell_level = [&](int k) {
     const int u = 1 - k;
-    return !outside[k] && -gap[k] <= sink[k] + tol && closed[k] <= 2.0 * sink[k] + tol &&
-           sink[k] > 0.0 && outside[u] && gap[u] <= tol && closed[u] > 0.0;
+    if (outside[k] || !outside[u] || gap[u] > tol || closed[u] <= 0.0) return false;
+    const double s = sink(k);
+    return s > 0.0 && -gap[k] <= s + tol && closed[k] <= 2.0 * s + tol;
   };
   const Overlap o = overlap(bodies, a, b);
   if (!outside[0] && !outside[1]) {

@@ -56,7 +56,8 @@ RelationJudgement squeeze(const Scene& scene, const Expectation& e, const BodySt
   double gap[4] = {kInf, kInf, kInf, kInf};
   std::size_t who[4] = {0, 0, 0, 0};
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    if (i == e.body || scene.bodies[i].kind == BodyKind::kDynamic || !scene.bodies[i].alive(k))
+    if (i == e.body || scene.bodies[i].kind == BodyKind::kDynamic || !scene.bodies[i].alive(k) ||
+        !scene.collide(i, e.body))
       continue;
     const Extent2 b = extent(scene, s, i);
     if (!b.finite) continue;

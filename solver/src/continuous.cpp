@@ -258,7 +258,33 @@ SweptPlacement ContinuousCollision::slide(StepContext& ctx, ChainState& state, s
         p[k] += (until - now) * w[k];
       return result();
     }
-    const int k = first.axis;
+    int k = first.axis;
+    // A face f slid along to meet this one (entry_face.h's rule): level with it when this slide
+    // began, or a sink below it and falling from it one step, and moving towards it by gravity
+    // alone. Then f meets that face, not this one: across a gap no wider than itself it comes out
+    // on the far ground's top, as a slow body does.
+    {
+      const int v = 1 - k;
+      const double dv = bodies.pos(v, wall) - bodies.start_pos(v, wall);
+      const double rv = p[v] - (bodies.start_pos(v, wall) + now * dv);
+      const int side = rv >= 0.0 ? 1 : -1;
+      const double gap = std::abs(rv) - (bodies.half(v, f) + bodies.half(v, wall));
+      const double closing = -side * (w[v] - dv);  // per whole step
+      const double g = v == 0 ? ctx.def.gravity.x : ctx.def.gravity.y;
+      const double sink = std::max(-side * g * bodies.gravity_scale[f] * ctx.dt * ctx.dt, 0.0);
+      const double slack = tol + 1e-9 * sink;
+      const bool level = std::abs(gap) <= tol && closing <= sink + tol;
+      // Falling from it: touching its corner along k when this slide began, as entry_face's rule.
+      const double dk = bodies.pos(k, wall) - bodies.start_pos(k, wall);
+      const double rk = p[k] - (bodies.start_pos(k, wall) + now * dk);
+      const double gap_k = std::abs(rk) - (bodies.half(k, f) + bodies.half(k, wall));
+      const bool fell = sink > 0.0 && std::abs(gap_k) <= tol && std::abs(-gap - sink) <= slack &&
+                        std::abs(closing - 2.0 * sink) <= slack;
+      if (level || fell) {
+        k = v;
+        first_side = side;
+      }
+    }
     now += first.at;
     for (int j = 0; j < 2; ++j)
       p[j] += first.at * w[j];

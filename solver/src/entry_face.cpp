@@ -90,11 +90,15 @@ Face entry_face(const StepContext& ctx, std::uint32_t a, std::uint32_t b) {
   // more than that step's gravity, whose corner a touched along the other axis when this one began
   // (the tolerance hid the corner then) and moves into now. Across a gap exactly as wide as a box,
   // the box ends a step touching both corners and meets the far one only in the next step.
+  // "A step ago" is read from the numbers: a body that fell from rest for one step is one sink
+  // deep at the start of this one and closes by two this step (its velocity is one step's
+  // gravity, and gravity adds another); a box resting beside a low step closes by one, and one
+  // that fell further is deeper. Both equalities hold to rounding only.
   auto fell_level = [&](int k) {
     const int u = 1 - k;
     if (outside[k] || !outside[u] || gap[u] > tol || closed[u] <= 0.0) return false;
-    const double s = sink(k);
-    return s > 0.0 && -gap[k] <= s + tol && closed[k] <= 2.0 * s + tol;
+    const double s = sink(k), slack = tol + 1e-9 * s;
+    return s > 0.0 && std::abs(-gap[k] - s) <= slack && std::abs(closed[k] - 2.0 * s) <= slack;
   };
   const Overlap o = overlap(bodies, a, b);
   if (!outside[0] && !outside[1]) {

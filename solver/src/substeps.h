@@ -39,7 +39,7 @@ inline std::uint32_t substep_count(double dt, double rate) {
   return n <= 1.0 ? 1u : static_cast<std::uint32_t>(std::min<double>(n, kMaxSubsteps));
 }
 
-// Adds sub-step `part`'s counts to `sum` (the step's report so far).
+// Adds solved sub-step `part`'s counts to `sum` (the step's report so far).
 inline void add_substep(StepStats& sum, const StepStats& part) {
   auto add = [](std::uint32_t& a, std::uint32_t b) {
     a = b > 0xffffffffu - a ? 0xffffffffu : a + b;
@@ -55,7 +55,6 @@ inline void add_substep(StepStats& sum, const StepStats& part) {
   sum.renumbered = std::max(sum.renumbered, part.renumbered);
   sum.resting = std::max(sum.resting, part.resting);
   sum.redone = std::max(sum.redone, part.redone);
-  sum.skipped = std::min(sum.skipped, part.skipped);  // every sub-step skipped
 }
 
 inline void add_substep(StepProfile& sum, const StepProfile& part) {

@@ -160,6 +160,7 @@ void World::step(double dt) {
   const double part = dt / n;
   StepStats stats;
   StepProfile profile;
+  bool solved = false;  // some sub-step was solved (not skipped at rest)
   w.carried_crushes.clear();
   w.held_drives.clear();
   for (std::uint32_t i = 0; i < w.bodies.size(); ++i) {
@@ -176,10 +177,14 @@ void World::step(double dt) {
       }
     }
     w.step_once(part, k > 0);
-    if (k == 0) {
-      stats = w.stats;
-    } else {
-      detail::add_substep(stats, w.stats);
+    // A skipped sub-step reports the last solved one's counts: they are not counted again.
+    if (w.stats.skipped == 0) {
+      if (!solved) {
+        stats = w.stats;
+      } else {
+        detail::add_substep(stats, w.stats);
+      }
+      solved = true;
     }
     detail::add_substep(profile, w.profile);
     w.carried_crushes.insert(w.carried_crushes.end(), w.crushes.begin(), w.crushes.end());
@@ -189,7 +194,8 @@ void World::step(double dt) {
     w.bodies.drive_x[s] = d.x;
     w.bodies.drive_y[s] = d.y;
   }
-  // A body crushed in several sub-steps is reported once, in the order of its first report.
+  // A crush reported by several sub-steps (the same body, anchor, blocker and axis) is reported
+  // once, in the order of its first report.
   w.crushes.clear();
   for (const CrushEvent& e : w.carried_crushes) {
     const bool seen = std::any_of(w.crushes.begin(), w.crushes.end(), [&](const CrushEvent& c) {
@@ -197,6 +203,7 @@ void World::step(double dt) {
     });
     if (!seen) w.crushes.push_back(e);
   }
+  if (!solved) stats = w.stats;  // every sub-step skipped: the last solved step's report stands
   stats.crush_events = static_cast<std::uint32_t>(w.crushes.size());
   stats.substeps = n;
   w.stats = stats;

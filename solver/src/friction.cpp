@@ -12,10 +12,6 @@ namespace {
 constexpr std::uint32_t kUnreached = 0xffffffffu;
 constexpr std::uint32_t kUnnumbered = 0xffffffffu;  // local_ of a slot no link touches
 
-}  // namespace
-
-namespace {
-
 // The velocity along axis t friction sees at body i's surface: its own, and a conveyor's belt on
 // top of it (BodyDef::surface_velocity).
 double surface_speed(const Bodies& bodies, std::uint32_t i, int t) {
